@@ -1,0 +1,15 @@
+//! One module per subcommand.
+pub mod evaluate;
+pub mod scenario;
+
+use anyhow::Result;
+use swarmplan_core::world::World;
+use swarmplan_io::scenario::{build_world, load_spec};
+
+use crate::ScenarioArgs;
+
+/// Loads the scenario and builds its world (terrain included).
+pub fn load_world(args: &ScenarioArgs) -> Result<World> {
+    let loaded = load_spec(&args.scenario)?;
+    Ok(build_world(&loaded, args.terrain.as_deref())?)
+}

@@ -1,0 +1,18 @@
+//! `swarmplan scenario list|show`.
+
+use anyhow::Result;
+use swarmplan_io::scenario::{load_spec, to_toml, BUILTIN};
+
+pub fn list() -> Result<()> {
+    for (name, _) in BUILTIN {
+        let spec = load_spec(name)?.spec;
+        println!("{name:<12} {}", spec.description);
+    }
+    Ok(())
+}
+
+pub fn show(scenario: &str) -> Result<()> {
+    let loaded = load_spec(scenario)?;
+    print!("{}", to_toml(&loaded.spec));
+    Ok(())
+}

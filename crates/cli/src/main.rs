@@ -1,0 +1,64 @@
+//! The `swarmplan` command-line tool: plan cooperative UAV paths, evaluate plans, inspect
+//! scenarios. Errors are printed with their causes (`{:#}`) and exit with status 2.
+
+mod commands;
+mod render;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Args, Parser, Subcommand};
+
+#[derive(Debug, Parser)]
+#[command(name = "swarmplan", version, about = "Cooperative path planning for UAV fleets (DLS-SMPSO and baselines)")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// List built-in scenarios or print one as TOML.
+    #[command(subcommand)]
+    Scenario(ScenarioCommand),
+    /// Cost breakdown and every violation of a plan file.
+    Evaluate(commands::evaluate::EvaluateArgs),
+}
+
+#[derive(Debug, Subcommand)]
+enum ScenarioCommand {
+    /// The built-in scenarios, one per line.
+    List,
+    /// Print a scenario (built-in name or file) as complete TOML.
+    Show {
+        /// Built-in name (see `scenario list`) or path to a TOML file.
+        scenario: String,
+    },
+}
+
+/// A scenario and an optional terrain file that replaces its terrain source.
+#[derive(Debug, Clone, Args)]
+pub struct ScenarioArgs {
+    /// Built-in scenario name (see `swarmplan scenario list`) or path to a TOML file.
+    #[arg(long, default_value = "paper-case1")]
+    pub scenario: String,
+    /// GeoTIFF or ESRI ASCII grid replacing the scenario's terrain source.
+    #[arg(long)]
+    pub terrain: Option<PathBuf>,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Scenario(ScenarioCommand::List) => commands::scenario::list(),
+        Command::Scenario(ScenarioCommand::Show { scenario }) => commands::scenario::show(&scenario),
+        Command::Evaluate(args) => commands::evaluate::run(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -1,0 +1,90 @@
+//! Terrain clearance along every segment and the map box.
+//!
+//! A segment flies straight between its waypoints' absolute altitudes; it must stay at least
+//! `map.clearance` above the ground, sampled every `map.clearance_step` metres. The terrain's
+//! block maxima accept most segments without sampling; the exact minimum clearance is only
+//! computed when a report asks for it.
+
+use crate::feasibility::{At, ViolationKind, ViolationSink};
+use crate::plan::Path;
+use crate::timing::TimedPath;
+use crate::world::World;
+
+/// Checks clearance and bounds of UAV `uav`. Returns the minimum clearance found, exact when
+/// `exact` is set (otherwise a lower bound good enough to decide feasibility).
+pub fn check_clearance(
+    world: &World,
+    uav: usize,
+    path: &Path,
+    tp: &TimedPath,
+    exact: bool,
+    sink: &mut ViolationSink,
+) -> f64 {
+    let map = &world.spec.map;
+    let terrain = &world.terrain;
+    let p = &tp.abs;
+    let mut min_clear = f64::INFINITY;
+    for (k, w) in path.waypoints.iter().enumerate() {
+        let out = (map.x[0] - w.x)
+            .max(w.x - map.x[1])
+            .max(map.y[0] - w.y)
+            .max(w.y - map.y[1]);
+        if out > 1e-9 {
+            sink.add(
+                ViolationKind::Bounds,
+                uav,
+                out,
+                At {
+                    index: Some(k),
+                    position: Some(p[k]),
+                    ..At::default()
+                },
+                || format!("waypoint {k} at ({:.1}, {:.1}) is outside the map box", w.x, w.y),
+            );
+        }
+    }
+    for s in 0..p.len().saturating_sub(1) {
+        let (a, b) = (p[s], p[s + 1]);
+        if !exact && a.z.min(b.z) - map.clearance >= terrain.max_in_rect(a.x, a.y, b.x, b.y) {
+            continue;
+        }
+        let n = ((a.truncate().distance(b.truncate()) / map.clearance_step).ceil() as usize).max(1);
+        let mut worst = f64::INFINITY;
+        let mut worst_at = a;
+        for i in 0..=n {
+            let q = a.lerp(b, i as f64 / n as f64);
+            let c = q.z - terrain.height(q.x, q.y);
+            if c < worst {
+                worst = c;
+                worst_at = q;
+            }
+        }
+        min_clear = min_clear.min(worst);
+        if worst < map.clearance - 1e-9 {
+            let time = tp.time_at(s)
+                + if tp.speed > 0.0 {
+                    worst_at.distance(a) / tp.speed
+                } else {
+                    0.0
+                };
+            sink.add(
+                ViolationKind::Terrain,
+                uav,
+                map.clearance - worst,
+                At {
+                    index: Some(s),
+                    position: Some(worst_at),
+                    time: Some(time),
+                    ..At::default()
+                },
+                || {
+                    format!(
+                        "segment {s} passes {worst:.1} m above the ground; clearance {} m",
+                        map.clearance
+                    )
+                },
+            );
+        }
+    }
+    min_clear
+}

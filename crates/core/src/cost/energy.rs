@@ -1,0 +1,61 @@
+//! Energy: the paper's Eq. 5 as an objective term, and the physical energy against the
+//! battery as a hard constraint.
+//!
+//! Eq. 5 (per UAV): J_energy = L + alpha sum |dz| + beta sum |d heading| (metres, metres,
+//! radians). Physical: E = P(v) L / v + m g (metres climbed) + turn energy x (radians
+//! turned), with P the rotary-wing power of [`crate::world::energy::RotaryWing`]. Feasible iff
+//! E <= (1 - reserve) x battery.
+
+use super::kinematics::Kinematics;
+use crate::feasibility::{At, ViolationKind, ViolationSink};
+use crate::timing::TimedPath;
+use crate::world::energy::G;
+use crate::world::World;
+
+/// Joules in a watt-hour.
+pub const J_PER_WH: f64 = 3600.0;
+
+/// The paper's Eq. 5 for one path.
+#[must_use]
+pub fn energy_term(world: &World, tp: &TimedPath, k: &Kinematics) -> f64 {
+    let e = &world.spec.energy;
+    tp.length + e.alpha * k.vertical_abs + e.beta * k.turn_abs
+}
+
+/// Physical energy of one path, joules.
+#[must_use]
+pub fn physical_energy(world: &World, uav: usize, tp: &TimedPath, k: &Kinematics) -> f64 {
+    if tp.length == 0.0 {
+        return 0.0;
+    }
+    let m = &world.spec.energy.model;
+    let payload = world.spec.uavs[uav].payload_kg;
+    let cruise = if tp.speed > 0.0 {
+        m.power(tp.speed, payload) * tp.length / tp.speed
+    } else {
+        f64::INFINITY
+    };
+    cruise + m.mass(payload) * G * k.climb_up + m.turn_energy_per_rad * k.turn_abs
+}
+
+/// Usable energy of UAV `uav`, joules.
+#[must_use]
+pub fn usable_energy(world: &World, uav: usize) -> f64 {
+    let u = &world.spec.uavs[uav];
+    (1.0 - u.reserve) * u.battery_wh * J_PER_WH
+}
+
+/// Checks the battery; returns E / battery (the ratio reported per UAV).
+pub fn check_battery(world: &World, uav: usize, energy: f64, sink: &mut ViolationSink) -> f64 {
+    let usable = usable_energy(world, uav);
+    if energy > usable {
+        sink.add(
+            ViolationKind::Energy,
+            uav,
+            100.0 * (energy / usable - 1.0),
+            At::default(),
+            || format!("needs {energy:.0} J; usable battery {usable:.0} J"),
+        );
+    }
+    energy / (world.spec.uavs[uav].battery_wh * J_PER_WH)
+}

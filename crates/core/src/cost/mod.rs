@@ -1,0 +1,275 @@
+//! The objective: SPSO's per-UAV terms plus the paper's cooperative terms (Eq. 2), each
+//! reported per UAV and per term, and the hard-constraint measure.
+//!
+//! J = sum over UAVs of [ b1 J1 + b2 J2 + b3 J3 + b4 J4 (SPSO)
+//!                        + w2 J_safety + w3 J_energy + w4 J_comm + w5 J_turning + w6 J_obstacle ]
+//!     + penalty x (violation measure)
+//!
+//! The `spso` preset keeps only SPSO's MyCost (5 J1 + J2 + 10 J3 + J4, +inf on collision)
+//! for single-UAV cross-checks. Every term lives in its own file; this one only combines them.
+//! [`assess`] is the one entry point: the optimizer's hot path and the report use the same
+//! code, the report merely asks for the violation list and exact clearances.
+
+pub mod clearance;
+pub mod comm;
+pub mod energy;
+pub mod kinematics;
+pub mod proximity;
+pub mod safety;
+pub mod spso;
+
+use serde::{Deserialize, Serialize};
+
+use crate::feasibility::{Violation, ViolationSink};
+use crate::plan::Plan;
+use crate::timing::TimedPlan;
+use crate::world::spec::ObjectivePreset;
+use crate::world::World;
+
+/// The terms of one UAV (unweighted in [`UavReport::raw`], weighted in [`UavReport::weighted`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct Terms {
+    /// SPSO J1: path length with absolute altitudes (m).
+    pub length: f64,
+    /// SPSO J2: threat danger band (m).
+    pub threat: f64,
+    /// SPSO J3: altitude deviation from the band centre (m).
+    pub altitude: f64,
+    /// SPSO J4: smoothness (deg).
+    pub smoothness: f64,
+    /// Eq. 4: speed and payload indicators (count).
+    pub safety: f64,
+    /// Eq. 5: length + alpha |dz| + beta |d heading|.
+    pub energy: f64,
+    /// Communication: outage cost (metres-equivalent).
+    pub communication: f64,
+    /// Eq. 7: sum of squared heading changes (rad^2).
+    pub turning: f64,
+    /// Eq. 8 at equal times (1/m^2 per second, plus per waypoint for threats).
+    pub obstacle: f64,
+}
+
+impl Terms {
+    /// Names in report order, for tables and JSON.
+    pub const NAMES: [&'static str; 9] = [
+        "length",
+        "threat",
+        "altitude",
+        "smoothness",
+        "safety",
+        "energy",
+        "communication",
+        "turning",
+        "obstacle",
+    ];
+
+    #[must_use]
+    pub fn values(&self) -> [f64; 9] {
+        [
+            self.length,
+            self.threat,
+            self.altitude,
+            self.smoothness,
+            self.safety,
+            self.energy,
+            self.communication,
+            self.turning,
+            self.obstacle,
+        ]
+    }
+
+    #[must_use]
+    pub fn sum(&self) -> f64 {
+        self.values().iter().sum()
+    }
+
+    /// Applies the objective's weights (the cooperative ones are 0 under `spso`).
+    #[must_use]
+    pub fn weighted(&self, world: &World) -> Self {
+        let o = &world.spec.objective;
+        let coop = if o.preset == ObjectivePreset::Spso {
+            0.0
+        } else {
+            1.0
+        };
+        Self {
+            length: o.length * self.length,
+            threat: o.threat * self.threat,
+            altitude: o.altitude * self.altitude,
+            smoothness: o.smoothness * self.smoothness,
+            safety: coop * o.safety * self.safety,
+            energy: coop * o.energy * self.energy,
+            communication: coop * o.communication * self.communication,
+            turning: coop * o.turning * self.turning,
+            obstacle: coop * o.obstacle * self.obstacle,
+        }
+    }
+}
+
+/// What a report says about one UAV.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct UavReport {
+    pub raw: Terms,
+    pub weighted: Terms,
+    /// Weighted sum of this UAV's terms (no penalty).
+    pub cost: f64,
+    pub length_m: f64,
+    pub speed_mps: f64,
+    pub arrival_s: f64,
+    pub energy_j: f64,
+    /// Energy over battery capacity.
+    pub battery_ratio: f64,
+    /// Minimum clearance above terrain (exact only in reports).
+    pub min_clearance_m: f64,
+    pub outage_s: f64,
+}
+
+/// The full assessment of a plan.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+pub struct Assessment {
+    pub per_uav: Vec<UavReport>,
+    /// Sum of the UAVs' weighted terms.
+    pub terms_cost: f64,
+    /// Penalty for hard violations (0 under `spso`, where collisions are +inf instead).
+    pub penalty: f64,
+    /// terms_cost + penalty, +inf if not finite.
+    pub total: f64,
+    /// Measure of violation: 0 iff feasible.
+    pub violation: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub violations: Option<Vec<Violation>>,
+}
+
+impl Assessment {
+    #[must_use]
+    pub fn feasible(&self) -> bool {
+        self.violation == 0.0
+    }
+
+    /// Cost per UAV, as the paper's tables report it.
+    #[must_use]
+    pub fn per_uav_cost(&self) -> f64 {
+        self.total / self.per_uav.len().max(1) as f64
+    }
+
+    /// Weighted terms summed over UAVs.
+    #[must_use]
+    pub fn term_totals(&self) -> Terms {
+        let mut t = Terms::default();
+        for u in &self.per_uav {
+            let w = &u.weighted;
+            t.length += w.length;
+            t.threat += w.threat;
+            t.altitude += w.altitude;
+            t.smoothness += w.smoothness;
+            t.safety += w.safety;
+            t.energy += w.energy;
+            t.communication += w.communication;
+            t.turning += w.turning;
+            t.obstacle += w.obstacle;
+        }
+        t
+    }
+}
+
+/// Buffers reused across evaluations.
+#[derive(Debug, Clone, Default)]
+pub struct Scratch {
+    pub timed: TimedPlan,
+    comm: comm::CommScratch,
+    comm_out: Vec<comm::CommOutcome>,
+    prox: proximity::ProximityScratch,
+    prox_out: Vec<f64>,
+    reports: Vec<UavReport>,
+}
+
+/// Assesses `plan` (allocating); `report` asks for the violation list and exact clearances.
+#[must_use]
+pub fn assess(world: &World, plan: &Plan, report: bool) -> Assessment {
+    let mut scratch = Scratch::default();
+    let mut sink = if report {
+        ViolationSink::collecting()
+    } else {
+        ViolationSink::default()
+    };
+    let (total, violation) = assess_into(world, plan, &mut scratch, &mut sink, report);
+    let terms_cost = scratch.reports.iter().map(|r| r.cost).sum::<f64>();
+    Assessment {
+        per_uav: std::mem::take(&mut scratch.reports),
+        terms_cost,
+        penalty: penalty(world, violation),
+        total,
+        violation,
+        violations: sink.list,
+    }
+}
+
+fn penalty(world: &World, violation: f64) -> f64 {
+    let o = &world.spec.objective;
+    if o.preset == ObjectivePreset::Spso || violation == 0.0 {
+        0.0
+    } else {
+        o.violation_penalty * violation
+    }
+}
+
+/// The hot path: assesses `plan` into `scratch` (per-UAV reports in `scratch.reports`) and
+/// returns (total cost, violation measure). `exact` makes clearances exact.
+pub fn assess_into(
+    world: &World,
+    plan: &Plan,
+    scratch: &mut Scratch,
+    sink: &mut ViolationSink,
+    exact: bool,
+) -> (f64, f64) {
+    let n = plan.uavs.len();
+    let spso_preset = world.spec.objective.preset == ObjectivePreset::Spso;
+    scratch.timed.fill(world, plan);
+    scratch.reports.resize_with(n, UavReport::default);
+    scratch.comm_out.resize(n, comm::CommOutcome::default());
+    scratch.prox_out.resize(n, 0.0);
+    if !spso_preset {
+        comm::communication(world, &scratch.timed, &mut scratch.comm, sink, &mut scratch.comm_out);
+        proximity::proximity(world, plan, &scratch.timed, &mut scratch.prox, sink, &mut scratch.prox_out);
+    }
+    let mut terms_cost = 0.0;
+    for (u, path) in plan.uavs.iter().enumerate() {
+        let tp = &scratch.timed.paths[u];
+        let spso_terms = spso::spso_terms(world, u, path, tp, spso_preset, sink);
+        let kin = kinematics::kinematics(world, u, tp, sink);
+        let min_clearance = clearance::check_clearance(world, u, path, tp, exact, sink);
+        let safety = safety::safety_term(world, u, tp, sink);
+        let joules = energy::physical_energy(world, u, tp, &kin);
+        let battery_ratio = energy::check_battery(world, u, joules, sink);
+        let raw = Terms {
+            length: spso_terms.length,
+            threat: spso_terms.threat,
+            altitude: spso_terms.altitude,
+            smoothness: spso_terms.smoothness,
+            safety,
+            energy: energy::energy_term(world, tp, &kin),
+            communication: scratch.comm_out[u].cost,
+            turning: kin.turn_sq,
+            obstacle: scratch.prox_out[u],
+        };
+        let weighted = raw.weighted(world);
+        let cost = weighted.sum();
+        terms_cost += cost;
+        scratch.reports[u] = UavReport {
+            raw,
+            weighted,
+            cost,
+            length_m: tp.length,
+            speed_mps: tp.speed,
+            arrival_s: tp.arrival,
+            energy_j: joules,
+            battery_ratio,
+            min_clearance_m: min_clearance,
+            outage_s: scratch.comm_out[u].outage_s,
+        };
+    }
+    let violation = sink.measure;
+    let total = terms_cost + penalty(world, violation);
+    let total = if total.is_nan() { f64::INFINITY } else { total };
+    (total, violation)
+}

@@ -1,0 +1,190 @@
+//! SPSO's single-UAV cost terms (Phung & Ha 2021, `MyCost.m`), exactly:
+//! - J1: length of the path with absolute altitudes;
+//! - J2: threat band: per segment and cylinder, with d the distance from the axis to the
+//!   xy-projected segment, 0 beyond r + size + 10 size, collision inside r + size, else
+//!   (r + size + 10 size) - d;
+//! - J3: sum over free waypoints of |z - (z_min + z_max) / 2| (z above ground; z < 0 crashes);
+//! - J4: at each interior waypoint, |turn| if the turn between xy projections exceeds 45 deg
+//!   and |change of climb angle| if it exceeds 45 deg (degrees; zero-length projections are
+//!   skipped by looking further back / ahead).
+//!
+//! With `collision_is_infinite` (the `spso` preset) a collision or a crash makes the term
+//! +inf as in SPSO. Otherwise the band keeps growing linearly inside the cylinder, so the
+//! search has a slope to follow, and the hard violation is reported to the sink.
+
+use glam::DVec3;
+
+use crate::feasibility::{At, ViolationKind, ViolationSink};
+use crate::plan::Path;
+use crate::timing::TimedPath;
+use crate::world::threat::point_segment_distance;
+use crate::world::World;
+
+/// SPSO's danger distance is 10 drone sizes.
+pub const DANGER_FACTOR: f64 = 10.0;
+/// SPSO's turn and climb-change thresholds (degrees) in J4.
+pub const SPSO_SMOOTH_LIMIT_DEG: f64 = 45.0;
+
+/// J1..J4 of one path.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SpsoTerms {
+    pub length: f64,
+    pub threat: f64,
+    pub altitude: f64,
+    pub smoothness: f64,
+}
+
+/// Computes J1..J4 for UAV `uav` and reports threat and altitude violations.
+pub fn spso_terms(
+    world: &World,
+    uav: usize,
+    path: &Path,
+    tp: &TimedPath,
+    collision_is_infinite: bool,
+    sink: &mut ViolationSink,
+) -> SpsoTerms {
+    let size = world.spec.uavs[uav].size;
+    SpsoTerms {
+        length: tp.length,
+        threat: threat_term(world, uav, size, path, tp, collision_is_infinite, sink),
+        altitude: altitude_term(world, uav, path, tp, collision_is_infinite, sink),
+        smoothness: smoothness_term(path, &tp.abs),
+    }
+}
+
+fn threat_term(
+    world: &World,
+    uav: usize,
+    size: f64,
+    path: &Path,
+    tp: &TimedPath,
+    inf: bool,
+    sink: &mut ViolationSink,
+) -> f64 {
+    let danger = DANGER_FACTOR * size;
+    let mut j2 = 0.0;
+    let w = &path.waypoints;
+    for t in &world.spec.threats {
+        let hard = t.r + size;
+        let outer = hard + danger;
+        for k in 0..w.len().saturating_sub(1) {
+            let (a, b) = (w[k], w[k + 1]);
+            // Cheap reject: both ends far beyond the band on the same side is not enough,
+            // but a segment whose bounding box misses the band's box is clear.
+            if a.x.min(b.x) > t.x + outer
+                || a.x.max(b.x) < t.x - outer
+                || a.y.min(b.y) > t.y + outer
+                || a.y.max(b.y) < t.y - outer
+            {
+                continue;
+            }
+            let d = point_segment_distance((t.x, t.y), (a.x, a.y), (b.x, b.y));
+            if d > outer {
+                continue;
+            }
+            if d < hard {
+                if inf {
+                    j2 = f64::INFINITY;
+                } else {
+                    j2 += outer - d;
+                }
+                sink.add(
+                    ViolationKind::Threat,
+                    uav,
+                    hard - d,
+                    At {
+                        index: Some(k),
+                        position: Some(tp.abs[k].lerp(tp.abs[k + 1], 0.5)),
+                        time: Some(0.5 * (tp.time_at(k) + tp.time_at(k + 1))),
+                        ..At::default()
+                    },
+                    || {
+                        format!(
+                            "segment {k} passes {d:.1} m from the axis of threat ({:.0}, {:.0}, r {:.0}); limit {hard:.1} m",
+                            t.x, t.y, t.r
+                        )
+                    },
+                );
+            } else {
+                j2 += outer - d;
+            }
+        }
+    }
+    j2
+}
+
+fn altitude_term(
+    world: &World,
+    uav: usize,
+    path: &Path,
+    tp: &TimedPath,
+    inf: bool,
+    sink: &mut ViolationSink,
+) -> f64 {
+    let [zmin, zmax] = world.spec.map.z_agl;
+    let mid = 0.5 * (zmin + zmax);
+    let w = &path.waypoints;
+    let mut j3 = 0.0;
+    for k in 1..w.len().saturating_sub(1) {
+        let z = w[k].z;
+        j3 += if z < 0.0 && inf {
+            f64::INFINITY
+        } else {
+            (z - mid).abs()
+        };
+        let excess = (zmin - z).max(z - zmax);
+        if excess > 1e-9 {
+            sink.add(
+                ViolationKind::Altitude,
+                uav,
+                excess,
+                At {
+                    index: Some(k),
+                    position: Some(tp.abs[k]),
+                    time: Some(tp.time_at(k)),
+                    ..At::default()
+                },
+                || format!("waypoint {k} is {z:.1} m above ground; band [{zmin}, {zmax}] m"),
+            );
+        }
+    }
+    j3
+}
+
+/// SPSO's J4 on the waypoints (xy from `path`, absolute z from `abs`).
+#[must_use]
+pub fn smoothness_term(path: &Path, abs: &[DVec3]) -> f64 {
+    let w = &path.waypoints;
+    let n = w.len();
+    let proj = |j: usize| (w[j + 1].x - w[j].x, w[j + 1].y - w[j].y);
+    let mut j4 = 0.0;
+    for i in 0..n.saturating_sub(2) {
+        // Segment i (waypoints i -> i+1), looking back past zero-length projections.
+        let mut s1 = proj(i);
+        let mut j = i;
+        while s1 == (0.0, 0.0) && j > 0 {
+            j -= 1;
+            s1 = proj(j);
+        }
+        // Segment i+1, looking ahead past zero-length projections.
+        let mut s2 = proj(i + 1);
+        let mut j = i + 1;
+        while s2 == (0.0, 0.0) && j + 1 < n - 1 {
+            j += 1;
+            s2 = proj(j);
+        }
+        let climb1 = (abs[i + 1].z - abs[i].z).atan2(s1.0.hypot(s1.1)).to_degrees();
+        let climb2 = (abs[i + 2].z - abs[i + 1].z).atan2(s2.0.hypot(s2.1)).to_degrees();
+        let cross = (s1.0 * s2.1 - s1.1 * s2.0).abs();
+        let dot = s1.0 * s2.0 + s1.1 * s2.1;
+        let turn = cross.atan2(dot).to_degrees();
+        if turn.abs() > SPSO_SMOOTH_LIMIT_DEG {
+            j4 += turn.abs();
+        }
+        let dclimb = (climb2 - climb1).abs();
+        if dclimb > SPSO_SMOOTH_LIMIT_DEG {
+            j4 += dclimb;
+        }
+    }
+    j4
+}

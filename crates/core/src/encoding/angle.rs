@@ -1,0 +1,55 @@
+//! Angle encoding (theta-PSO, Zhong, Li, Qian 2008; used for UAV routes by Fu, Ding, Zhou
+//! 2012 as APSO): each coordinate = (max + min)/2 + (max - min)/2 sin(theta), with theta in
+//! [-pi/2, pi/2] (the paper's range, where sin is one-to-one). With `periodic` the phases
+//! live on the whole circle [-pi, pi) and wrap, since sin is 2 pi-periodic.
+
+use std::f64::consts::{FRAC_PI_2, PI};
+
+use super::{Frame, PathEncoding};
+use crate::plan::Plan;
+use crate::problem::Bound;
+
+#[derive(Debug, Clone)]
+pub struct Angle {
+    frame: Frame,
+    bounds: Vec<Bound>,
+}
+
+impl Angle {
+    #[must_use]
+    pub fn new(frame: Frame, periodic: bool) -> Self {
+        let b = if periodic {
+            Bound::periodic(-PI, PI)
+        } else {
+            Bound::new(-FRAC_PI_2, FRAC_PI_2)
+        };
+        let bounds = vec![b; frame.dimension()];
+        Self { frame, bounds }
+    }
+}
+
+fn map(theta: f64, r: [f64; 2]) -> f64 {
+    let v = 0.5 * (r[0] + r[1]) + 0.5 * (r[1] - r[0]) * theta.sin();
+    v.clamp(r[0], r[1])
+}
+
+impl PathEncoding for Angle {
+    fn bounds(&self) -> &[Bound] {
+        &self.bounds
+    }
+
+    fn decode_into(&self, x: &[f64], plan: &mut Plan) {
+        let f = &self.frame;
+        let n = f.n;
+        f.prepare(plan);
+        for (i, path) in plan.uavs.iter_mut().enumerate() {
+            let b = &x[3 * n * i..3 * n * (i + 1)];
+            for k in 0..n {
+                let w = &mut path.waypoints[k + 1];
+                w.x = map(b[k], f.x);
+                w.y = map(b[n + k], f.y);
+                w.z = map(b[2 * n + k], f.z);
+            }
+        }
+    }
+}

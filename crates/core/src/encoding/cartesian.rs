@@ -1,0 +1,47 @@
+//! Cartesian encoding: each free waypoint's (x, y, z above ground) directly, bounded by the
+//! map box and the altitude band. The plain PSO / QPSO / GWO / ABC baselines use it.
+
+use super::{Frame, PathEncoding};
+use crate::plan::Plan;
+use crate::problem::Bound;
+
+#[derive(Debug, Clone)]
+pub struct Cartesian {
+    frame: Frame,
+    bounds: Vec<Bound>,
+}
+
+impl Cartesian {
+    #[must_use]
+    pub fn new(frame: Frame) -> Self {
+        let n = frame.n;
+        let mut bounds = Vec::with_capacity(frame.dimension());
+        for _ in &frame.starts {
+            for r in [frame.x, frame.y, frame.z] {
+                bounds.extend(std::iter::repeat_n(Bound::new(r[0], r[1]), n));
+            }
+        }
+        Self { frame, bounds }
+    }
+}
+
+impl PathEncoding for Cartesian {
+    fn bounds(&self) -> &[Bound] {
+        &self.bounds
+    }
+
+    fn decode_into(&self, x: &[f64], plan: &mut Plan) {
+        let f = &self.frame;
+        let n = f.n;
+        f.prepare(plan);
+        for (i, path) in plan.uavs.iter_mut().enumerate() {
+            let b = &x[3 * n * i..3 * n * (i + 1)];
+            for k in 0..n {
+                let w = &mut path.waypoints[k + 1];
+                w.x = b[k].clamp(f.x[0], f.x[1]);
+                w.y = b[n + k].clamp(f.y[0], f.y[1]);
+                w.z = b[2 * n + k].clamp(f.z[0], f.z[1]);
+            }
+        }
+    }
+}

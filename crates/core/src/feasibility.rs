@@ -1,0 +1,161 @@
+//! Hard constraints, each violation named: kind, UAV (and the other UAV for separation),
+//! place and time, and how far past the limit. FR in Tables 4-5 is the share of runs whose
+//! best plan has none.
+//!
+//! The same code path serves the optimizer's hot loop and the report: a [`ViolationSink`]
+//! always sums a scalar measure of violation, and keeps the list only when asked to, so the
+//! hot loop does not allocate.
+
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+use crate::cost::assess;
+use crate::plan::Plan;
+use crate::world::World;
+
+/// What was violated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ViolationKind {
+    /// Inside a threat cylinder (r + drone size); amount in metres.
+    Threat,
+    /// Below terrain + clearance along a segment; amount in metres.
+    Terrain,
+    /// A free waypoint outside the altitude band above ground; amount in metres.
+    Altitude,
+    /// A waypoint outside the map box; amount in metres.
+    Bounds,
+    /// Turn angle above the limit at a waypoint; amount in degrees.
+    Turn,
+    /// Climb or dive angle above the limit on a segment; amount in degrees.
+    Climb,
+    /// Speed outside [v_min, v_max]; amount in m/s.
+    Speed,
+    /// Payload above W_max; amount in kg.
+    Payload,
+    /// Energy above the usable battery; amount in percent of the usable energy.
+    Energy,
+    /// Two UAVs closer than the separation distance; amount in metres.
+    Separation,
+    /// A UAV out of contact longer than tolerated; amount in seconds beyond the tolerance.
+    Comm,
+}
+
+impl ViolationKind {
+    pub const ALL: [ViolationKind; 11] = [
+        Self::Threat,
+        Self::Terrain,
+        Self::Altitude,
+        Self::Bounds,
+        Self::Turn,
+        Self::Climb,
+        Self::Speed,
+        Self::Payload,
+        Self::Energy,
+        Self::Separation,
+        Self::Comm,
+    ];
+
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Threat => "threat",
+            Self::Terrain => "terrain",
+            Self::Altitude => "altitude",
+            Self::Bounds => "bounds",
+            Self::Turn => "turn",
+            Self::Climb => "climb",
+            Self::Speed => "speed",
+            Self::Payload => "payload",
+            Self::Energy => "energy",
+            Self::Separation => "separation",
+            Self::Comm => "comm",
+        }
+    }
+}
+
+/// One broken hard constraint.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Violation {
+    pub kind: ViolationKind,
+    pub uav: usize,
+    /// The other UAV of a separation violation.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub other: Option<usize>,
+    /// Waypoint or segment index where it applies (segment k joins waypoints k and k + 1).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub index: Option<usize>,
+    /// Where (x, y, absolute altitude), when a place applies.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub position: Option<[f64; 3]>,
+    /// When (seconds after departure), when a time applies.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub time: Option<f64>,
+    /// How far past the limit, in the unit of the kind.
+    pub amount: f64,
+    /// A sentence for humans.
+    pub detail: String,
+}
+
+/// Collects violations: always their scalar measure, the list only on request.
+#[derive(Debug, Default)]
+pub struct ViolationSink {
+    /// Sum over violations of (1 + amount): any violation counts at least 1.
+    pub measure: f64,
+    pub list: Option<Vec<Violation>>,
+}
+
+/// Where and when a violation happened (all optional).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct At {
+    pub other: Option<usize>,
+    pub index: Option<usize>,
+    pub position: Option<DVec3>,
+    pub time: Option<f64>,
+}
+
+impl ViolationSink {
+    #[must_use]
+    pub fn collecting() -> Self {
+        Self {
+            measure: 0.0,
+            list: Some(Vec::new()),
+        }
+    }
+
+    #[must_use]
+    pub fn is_collecting(&self) -> bool {
+        self.list.is_some()
+    }
+
+    /// Records a violation; `detail` is only built when the list is kept.
+    pub fn add(
+        &mut self,
+        kind: ViolationKind,
+        uav: usize,
+        amount: f64,
+        at: At,
+        detail: impl FnOnce() -> String,
+    ) {
+        let amount = if amount.is_finite() { amount.max(0.0) } else { 1e9 };
+        self.measure += 1.0 + amount;
+        if let Some(list) = &mut self.list {
+            list.push(Violation {
+                kind,
+                uav,
+                other: at.other,
+                index: at.index,
+                position: at.position.map(|p| p.to_array()),
+                time: at.time,
+                amount,
+                detail: detail(),
+            });
+        }
+    }
+}
+
+/// Every violation of `plan` in `world`.
+#[must_use]
+pub fn check(world: &World, plan: &Plan) -> Vec<Violation> {
+    assess(world, plan, true).violations.unwrap_or_default()
+}

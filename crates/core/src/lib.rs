@@ -1,0 +1,24 @@
+//! swarmplan-core: the planning problem of "Cooperative Path Planning for Multi-UAVs with
+//! Time-Varying Communication and Energy Consumption Constraints" (DLS-SMPSO paper), as
+//! resolved in the project's DESIGN.md, and the optimizers that solve it.
+//!
+//! The crate does no I/O. It is split the way OMPL splits motion planning:
+//! - [`world`]: what exists (terrain, threats, fleet, channel, energy model, scenario);
+//! - [`plan`] and [`timing`]: a candidate plan and when each UAV is where;
+//! - [`cost`] and [`feasibility`]: how good a plan is and which hard limits it breaks;
+//! - [`encoding`]: how a flat `&[f64]` becomes a plan (spherical motion, cartesian, angle);
+//! - [`problem`]: the `Problem` trait optimizers see (bounds + evaluate);
+//! - [`optim`]: the optimizers and the solve loop.
+
+pub mod cost;
+pub mod encoding;
+pub mod feasibility;
+pub mod optim;
+pub mod plan;
+pub mod planning;
+pub mod problem;
+pub mod rng;
+pub mod timing;
+pub mod world;
+
+pub use glam::DVec3;

@@ -1,0 +1,88 @@
+//! Optimizers and the loop that runs them.
+//!
+//! Shaped like argmin: an [`Optimizer`] knows how to start ([`Optimizer::init`]) and how to
+//! take one step ([`Optimizer::step`]); [`solve`] owns the loop, the [`Budget`], the
+//! observer, the termination reason and the evaluation count. Optimizers reach the problem
+//! only through the [`Evaluator`] the loop hands them, so every evaluation (initial swarms
+//! and their re-draws, dimensional-learning probes, ABC scouts) is counted and an
+//! evaluation budget is never exceeded: past it the evaluator refuses (`None`) and the
+//! optimizer stops its step with a consistent state.
+//!
+//! | Algorithm | File | Reference |
+//! |---|---|---|
+//! | `pso`, `apso`, `spso` | [`pso`] | Kennedy & Eberhart 1995; Shi & Eberhart 1998; Phung & Ha 2021 |
+//! | `dls-smpso` (`paper`, `exemplar`) | [`dls`] | the DLS-SMPSO paper; Xu et al. 2019 |
+//! | `qpso` | [`qpso`] | Sun, Feng, Xu 2004 |
+//! | `gwo` | [`gwo`] | Mirjalili, Mirjalili, Lewis 2014 |
+//! | `abc` | [`abc`] | Karaboga 2005; Karaboga & Akay 2009 |
+//!
+//! PSO, APSO and SPSO are one implementation with the same (SPSO) parameters: they differ
+//! only by the encoding the problem uses, which is not the optimizer's concern.
+//! [`build`] makes any of them from an [`Algorithm`] and [`AlgorithmParams`].
+//!
+//! Conventions shared by all: positions are drawn uniformly in the box and never evaluated
+//! outside it (moves are clamped; periodic bounds may wrap); costs compare with
+//! [`Evaluation::better_than`] (strict, total order, NaN as +inf), so a NaN is never kept as
+//! best; every random number comes from the `&mut Rng` argument, and a run is sequential,
+//! so the same seed gives a bit-identical [`Outcome`]; populations are allocated once per
+//! run.
+//!
+//! # Conformance
+//!
+//! `tests/conformance.rs` runs every algorithm (both DLS modes) with default parameters
+//! (population 50) on four 30-D functions, seed 2024, and requires the best cost below
+//! these thresholds within the budget of 20,000 evaluations and 400 iterations (so SPSO's
+//! damping, 0.98^t, is spent, and extra DLS evaluations compete within the same budget).
+//! Thresholds leave a margin of roughly an order of magnitude over the measured values
+//! (in brackets). Domains: sphere [-100, 100], Rastrigin [-5.12, 5.12], Rosenbrock
+//! [-30, 30], Ackley [-32, 32]; all have minimum 0.
+//!
+//! THRESHOLDS
+//!
+//! The same harness checks that the same seed gives a bit-identical outcome, that nothing
+//! outside the bounds is evaluated, that an evaluation budget which is not a multiple of
+//! the population is met exactly, and that a NaN region never yields a NaN best.
+
+pub mod abc;
+pub mod dls;
+mod evaluator;
+pub mod gwo;
+pub mod params;
+pub mod pso;
+pub mod qpso;
+mod solve;
+mod swarm;
+
+pub use abc::{Abc, AbcParams};
+pub use dls::{build_exemplar, build_exemplar_into, DlsMode, DlsParams, DlsSmpso, Exemplar};
+pub use evaluator::Evaluator;
+pub use gwo::{Gwo, GwoParams};
+pub use params::{build, try_build, Algorithm, AlgorithmParams, ParamsError, UnknownAlgorithm};
+pub use pso::{Pso, PsoParams};
+pub use qpso::{Qpso, QpsoParams};
+pub use solve::{solve, Budget, IterationRecord, Outcome, Termination, DEFAULT_ITERATIONS};
+
+use crate::problem::Evaluation;
+use crate::rng::Rng;
+
+/// A population-based optimizer, driven one step at a time by [`solve`].
+///
+/// Implementations evaluate only through the [`Evaluator`], draw randomness only from
+/// `rng`, and keep their state consistent when the evaluator refuses (budget spent): they
+/// end the step early and the solve loop stops.
+pub trait Optimizer: Send {
+    /// Nominal evaluations per step (the population; 2 SN for ABC), used to estimate the
+    /// iteration count under an evaluation budget.
+    fn evaluations_per_iteration(&self) -> u64;
+
+    /// Draws and evaluates the initial population. `planned_iterations` is the number of
+    /// steps the run is expected to take, for schedules (QPSO's beta, GWO's a).
+    fn init(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng, planned_iterations: usize);
+
+    /// One iteration.
+    fn step(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng);
+
+    /// The best position evaluated so far and its evaluation (empty and worst before
+    /// anything was evaluated).
+    fn best(&self) -> (&[f64], Evaluation);
+}

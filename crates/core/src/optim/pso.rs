@@ -1,0 +1,406 @@
+//! Particle swarm optimization: the velocity form of Kennedy & Eberhart (1995, Proc. ICNN)
+//! with the inertia weight of Shi & Eberhart (1998, Proc. IEEE CEC), in the variant of
+//! SPSO's public code (Phung & Ha 2021, Appl. Soft Comput. 107:107376).
+//!
+//! For particle i and every dimension j, with fresh r1, r2 ~ U(0, 1) per element:
+//!
+//! ```text
+//! v_ij <- w v_ij + c1 r1 (pbest_ij - x_ij) + c2 r2 (gbest_j - x_ij)
+//! v_ij <- clamp(v_ij, -vmax_j, vmax_j),     vmax_j = velocity_clamp * (hi_j - lo_j)
+//! x_ij <- x_ij + v_ij
+//! if x_ij left [lo_j, hi_j]: v_ij <- -v_ij (mirror), x_ij <- clamp(x_ij)
+//! w <- w * inertia_damping                  (once per iteration)
+//! ```
+//!
+//! Periodic bounds wrap instead of clamping and mirroring. Velocities start at zero (as in
+//! SPSO's code). pbest moves only on a strict improvement; with `asynchronous` gbest follows
+//! at once, so later particles of the same iteration already see it (SPSO); otherwise it is
+//! updated after the whole swarm moved. When `initial_redraws > 0` and no particle of the
+//! initial swarm has a finite cost, the whole swarm is drawn again (SPSO does this until one
+//! does; here at most `initial_redraws` times), every draw counted in the budget.
+//!
+//! PSO (cartesian encoding), APSO (angle encoding) and SPSO (spherical encoding) are this
+//! one optimizer with the same parameters; only the encoding differs. DLS-SMPSO
+//! ([`super::dls`]) reuses the swarm machinery below.
+
+use rand::Rng as _;
+use serde::{Deserialize, Serialize};
+
+use super::params::{check, ParamsError};
+use super::swarm::{fill_uniform, into_bound, row, row_mut, BestSoFar};
+use super::{Evaluator, Optimizer};
+use crate::problem::{Bound, Evaluation};
+use crate::rng::Rng;
+
+/// Parameters of PSO / APSO / SPSO (defaults: the paper's and SPSO's settings).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PsoParams {
+    /// Swarm size nPop (50).
+    pub population: usize,
+    /// Initial inertia weight w (1.0).
+    pub inertia: f64,
+    /// Factor applied to w after every iteration, wdamp (0.98; 1 keeps w constant).
+    pub inertia_damping: f64,
+    /// Cognitive coefficient c1 (1.5).
+    pub cognitive: f64,
+    /// Social coefficient c2 (1.5).
+    pub social: f64,
+    /// Velocity limit as a fraction of each bound's width, alpha (0.5); `inf` disables it.
+    pub velocity_clamp: f64,
+    /// Negate a velocity component whose position left its bound, before clamping (true).
+    pub mirror_velocity: bool,
+    /// Update gbest as soon as a particle improves, within the iteration (true).
+    pub asynchronous: bool,
+    /// Maximum number of re-draws of the initial swarm while no particle has a finite cost
+    /// (1000; 0 disables). Each draw spends `population` evaluations.
+    pub initial_redraws: usize,
+}
+
+impl PsoParams {
+    pub const DEFAULT: Self = Self {
+        population: 50,
+        inertia: 1.0,
+        inertia_damping: 0.98,
+        cognitive: 1.5,
+        social: 1.5,
+        velocity_clamp: 0.5,
+        mirror_velocity: true,
+        asynchronous: true,
+        initial_redraws: 1000,
+    };
+
+    /// Checks every field; the error names the first bad one.
+    pub fn validate(&self) -> Result<(), ParamsError> {
+        check(
+            self.population >= 1,
+            "population",
+            "at least 1",
+            self.population,
+        )?;
+        check(
+            self.inertia.is_finite(),
+            "inertia",
+            "a finite number",
+            self.inertia,
+        )?;
+        check(
+            self.inertia_damping > 0.0 && self.inertia_damping <= 1.0,
+            "inertia_damping",
+            "a number in (0, 1]",
+            self.inertia_damping,
+        )?;
+        check(
+            self.cognitive.is_finite() && self.cognitive >= 0.0,
+            "cognitive",
+            "a finite number >= 0",
+            self.cognitive,
+        )?;
+        check(
+            self.social.is_finite() && self.social >= 0.0,
+            "social",
+            "a finite number >= 0",
+            self.social,
+        )?;
+        check(
+            self.velocity_clamp > 0.0,
+            "velocity_clamp",
+            "a positive number (inf disables the clamp)",
+            self.velocity_clamp,
+        )
+    }
+}
+
+impl Default for PsoParams {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// The state of a particle swarm, shared by [`Pso`] and DLS-SMPSO.
+#[derive(Debug, Clone)]
+pub(crate) struct Swarm {
+    pub params: PsoParams,
+    pub n: usize,
+    pub dim: usize,
+    pub x: Vec<f64>,
+    pub v: Vec<f64>,
+    pub pbest: Vec<f64>,
+    pub pbest_eval: Vec<Evaluation>,
+    pub gbest: BestSoFar,
+    vmax: Vec<f64>,
+    /// Current inertia weight.
+    pub w: f64,
+}
+
+impl Swarm {
+    pub fn new(params: PsoParams, bounds: &[Bound]) -> Self {
+        let n = params.population.max(1);
+        let dim = bounds.len();
+        Self {
+            params,
+            n,
+            dim,
+            x: vec![0.0; n * dim],
+            v: vec![0.0; n * dim],
+            pbest: vec![0.0; n * dim],
+            pbest_eval: vec![Evaluation::worst(); n],
+            gbest: BestSoFar::new(dim),
+            vmax: bounds
+                .iter()
+                .map(|b| params.velocity_clamp * b.width())
+                .collect(),
+            w: params.inertia,
+        }
+    }
+
+    /// Draws and evaluates the initial swarm, re-drawing it while no particle has a finite
+    /// cost (up to `initial_redraws` times). Particles the budget could not evaluate keep
+    /// their position with the worst evaluation.
+    pub fn initialize(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng) {
+        let bounds = ev.bounds();
+        let dim = self.dim;
+        for _draw in 0..=self.params.initial_redraws {
+            self.gbest.clear();
+            for i in 0..self.n {
+                let x = row_mut(&mut self.x, i, dim);
+                fill_uniform(bounds, rng, x);
+                row_mut(&mut self.v, i, dim).fill(0.0);
+                let e = ev.evaluate(x).unwrap_or(Evaluation::worst());
+                row_mut(&mut self.pbest, i, dim).copy_from_slice(x);
+                self.pbest_eval[i] = e;
+                self.gbest.offer(x, e);
+            }
+            if self.gbest.eval.cost.is_finite() || ev.is_exhausted() {
+                break;
+            }
+        }
+    }
+
+    /// Moves particle i. `guide` replaces pbest_i in the cognitive term (DLS exemplar);
+    /// `lambda` adds the deterministic pull lambda (gbest - x) of DLS-SMPSO (Eq. 21).
+    pub fn move_particle(
+        &mut self,
+        i: usize,
+        guide: Option<&[f64]>,
+        lambda: f64,
+        bounds: &[Bound],
+        rng: &mut Rng,
+    ) {
+        let dim = self.dim;
+        let PsoParams {
+            cognitive: c1,
+            social: c2,
+            mirror_velocity,
+            ..
+        } = self.params;
+        let w = self.w;
+        let x = row_mut(&mut self.x, i, dim);
+        let v = row_mut(&mut self.v, i, dim);
+        let p = guide.unwrap_or(row(&self.pbest, i, dim));
+        let g = &self.gbest.x;
+        for j in 0..dim {
+            let r1: f64 = rng.random();
+            let r2: f64 = rng.random();
+            let to_g = g[j] - x[j];
+            let vj = (w * v[j] + c1 * r1 * (p[j] - x[j]) + c2 * r2 * to_g + lambda * to_g)
+                .clamp(-self.vmax[j], self.vmax[j]);
+            let b = &bounds[j];
+            let moved = x[j] + vj;
+            if !b.periodic && !b.contains(moved) && mirror_velocity {
+                v[j] = -vj;
+            } else {
+                v[j] = vj;
+            }
+            x[j] = into_bound(b, moved);
+        }
+    }
+
+    /// Evaluates particle i where it stands and updates pbest_i (strict improvement) and,
+    /// when asynchronous, gbest. `None` when the budget is spent (nothing changed), else
+    /// whether pbest_i improved.
+    pub fn evaluate_particle(&mut self, i: usize, ev: &mut Evaluator<'_>) -> Option<bool> {
+        let dim = self.dim;
+        let x = row(&self.x, i, dim);
+        let e = ev.evaluate(x)?;
+        if !e.better_than(&self.pbest_eval[i]) {
+            return Some(false);
+        }
+        row_mut(&mut self.pbest, i, dim).copy_from_slice(x);
+        self.pbest_eval[i] = e;
+        if self.params.asynchronous {
+            self.gbest.offer(x, e);
+        }
+        Some(true)
+    }
+
+    /// Offers pbest_i to gbest.
+    pub fn offer_pbest(&mut self, i: usize) -> bool {
+        self.gbest
+            .offer(row(&self.pbest, i, self.dim), self.pbest_eval[i])
+    }
+
+    /// End of an iteration (also when the budget cut it short): synchronous gbest update,
+    /// inertia damping.
+    pub fn end_iteration(&mut self) {
+        if !self.params.asynchronous {
+            for i in 0..self.n {
+                self.offer_pbest(i);
+            }
+        }
+        self.w *= self.params.inertia_damping;
+    }
+}
+
+/// PSO / APSO / SPSO.
+#[derive(Debug, Clone)]
+pub struct Pso {
+    swarm: Swarm,
+}
+
+impl Pso {
+    #[must_use]
+    pub fn new(params: PsoParams) -> Self {
+        Self {
+            swarm: Swarm::new(params, &[]),
+        }
+    }
+
+    #[must_use]
+    pub fn params(&self) -> &PsoParams {
+        &self.swarm.params
+    }
+
+    /// The inertia weight the next step will use.
+    #[must_use]
+    pub fn inertia(&self) -> f64 {
+        self.swarm.w
+    }
+}
+
+impl Optimizer for Pso {
+    fn evaluations_per_iteration(&self) -> u64 {
+        self.swarm.n as u64
+    }
+
+    fn init(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng, _planned_iterations: usize) {
+        self.swarm = Swarm::new(self.swarm.params, ev.bounds());
+        self.swarm.initialize(ev, rng);
+    }
+
+    fn step(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng) {
+        let bounds = ev.bounds();
+        for i in 0..self.swarm.n {
+            self.swarm.move_particle(i, None, 0.0, bounds, rng);
+            if self.swarm.evaluate_particle(i, ev).is_none() {
+                break;
+            }
+        }
+        self.swarm.end_iteration();
+    }
+
+    fn best(&self) -> (&[f64], Evaluation) {
+        (&self.swarm.gbest.x, self.swarm.gbest.eval)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::optim::{solve, Budget};
+    use crate::problem::Problem;
+    use crate::rng::rng_from_seed;
+
+    /// Infinite cost everywhere except x > 0.9 (a sliver a random draw rarely hits).
+    struct Sliver(Vec<Bound>);
+
+    impl Problem for Sliver {
+        fn bounds(&self) -> &[Bound] {
+            &self.0
+        }
+        fn evaluate(&self, x: &[f64]) -> Evaluation {
+            let c = if x.iter().all(|v| *v > 0.9) {
+                1.0
+            } else {
+                f64::INFINITY
+            };
+            Evaluation::new(c, 0.0)
+        }
+    }
+
+    #[test]
+    fn initial_swarm_is_redrawn_until_one_particle_is_finite() {
+        let p = Sliver(vec![Bound::new(0.0, 1.0); 2]);
+        let params = PsoParams {
+            population: 5,
+            ..PsoParams::DEFAULT
+        };
+        let mut pso = Pso::new(params);
+        let out = solve(
+            &p,
+            &mut pso,
+            Budget::iterations(0),
+            &mut rng_from_seed(3),
+            &mut |_| {},
+        );
+        assert!(out.best.cost.is_finite());
+        // Each of the (several) draws is counted in full.
+        assert!(out.evaluations > 5 && out.evaluations % 5 == 0);
+
+        let mut no_redraw = Pso::new(PsoParams {
+            initial_redraws: 0,
+            ..params
+        });
+        let out = solve(
+            &p,
+            &mut no_redraw,
+            Budget::iterations(0),
+            &mut rng_from_seed(3),
+            &mut |_| {},
+        );
+        assert_eq!(out.evaluations, 5);
+    }
+
+    #[test]
+    fn inertia_is_damped_once_per_iteration() {
+        let p = Sliver(vec![Bound::new(0.0, 1.0); 2]);
+        let mut pso = Pso::new(PsoParams {
+            population: 3,
+            initial_redraws: 0,
+            ..PsoParams::DEFAULT
+        });
+        let _ = solve(
+            &p,
+            &mut pso,
+            Budget::iterations(10),
+            &mut rng_from_seed(1),
+            &mut |_| {},
+        );
+        assert!((pso.inertia() - 0.98_f64.powi(10)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn velocity_is_mirrored_where_the_position_left_the_box() {
+        let bounds = [Bound::new(0.0, 1.0), Bound::periodic(0.0, 1.0)];
+        let mut s = Swarm::new(
+            PsoParams {
+                population: 1,
+                inertia: 1.0,
+                cognitive: 0.0,
+                social: 0.0,
+                velocity_clamp: 0.5,
+                ..PsoParams::DEFAULT
+            },
+            &bounds,
+        );
+        s.x.copy_from_slice(&[0.9, 0.9]);
+        s.v.copy_from_slice(&[0.8, 0.3]);
+        s.move_particle(0, None, 0.0, &bounds, &mut rng_from_seed(0));
+        // Clamped to 0.5, left the box at 1.4: mirrored and clamped.
+        assert_eq!(s.v[0], -0.5);
+        assert_eq!(s.x[0], 1.0);
+        // Periodic: wrapped, velocity kept.
+        assert_eq!(s.v[1], 0.3);
+        assert!((s.x[1] - 0.2).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,209 @@
+//! The solve loop: budget, observer, evaluation count and termination reason.
+//!
+//! As in argmin's executor, an optimizer only knows how to start and how to take one step;
+//! [`solve`] owns everything around that. It records the best cost after initialisation
+//! (iteration 0) and after every step, hands each record to an observer (progress output,
+//! convergence curves) and keeps them in the [`Outcome`].
+
+use serde::{Deserialize, Serialize};
+
+use super::{Evaluator, Optimizer};
+use crate::problem::{Evaluation, Problem};
+use crate::rng::Rng;
+
+/// Iterations of a run when no budget is given (the paper's setting).
+pub const DEFAULT_ITERATIONS: usize = 200;
+
+/// When to stop. Either limit may be absent; with both absent the run does
+/// [`DEFAULT_ITERATIONS`] iterations.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Budget {
+    /// Maximum number of steps after initialisation (200).
+    pub iterations: Option<usize>,
+    /// Maximum number of evaluations, initialisation included (none). Never exceeded: the
+    /// step that reaches it is cut short.
+    pub evaluations: Option<u64>,
+}
+
+impl Budget {
+    pub const DEFAULT: Self = Self {
+        iterations: Some(DEFAULT_ITERATIONS),
+        evaluations: None,
+    };
+
+    /// A budget of `n` iterations and unlimited evaluations.
+    #[must_use]
+    pub const fn iterations(n: usize) -> Self {
+        Self {
+            iterations: Some(n),
+            evaluations: None,
+        }
+    }
+
+    /// A budget of `n` evaluations and unlimited iterations.
+    #[must_use]
+    pub const fn evaluations(n: u64) -> Self {
+        Self {
+            iterations: None,
+            evaluations: Some(n),
+        }
+    }
+
+    /// The iteration limit actually applied (the default when neither limit is given).
+    #[must_use]
+    pub fn max_iterations(&self) -> Option<usize> {
+        match (self.iterations, self.evaluations) {
+            (None, None) => Some(DEFAULT_ITERATIONS),
+            (it, _) => it,
+        }
+    }
+
+    /// The number of iterations the run is expected to last, for schedules that need it
+    /// (QPSO's beta, GWO's a). Under an evaluation budget it is estimated from the nominal
+    /// evaluations per iteration, counting initialisation as one iteration's worth; an
+    /// optimizer that spends extra evaluations (DLS) then ends before its schedule does.
+    #[must_use]
+    pub fn planned_iterations(&self, evaluations_per_iteration: u64) -> usize {
+        let by_evaluations = self.evaluations.map(|e| {
+            let per = evaluations_per_iteration.max(1);
+            usize::try_from((e / per).saturating_sub(1))
+                .unwrap_or(usize::MAX)
+                .max(1)
+        });
+        match (self.max_iterations(), by_evaluations) {
+            (Some(i), Some(e)) => i.min(e),
+            (Some(i), None) => i,
+            (None, Some(e)) => e,
+            (None, None) => DEFAULT_ITERATIONS,
+        }
+        .max(1)
+    }
+}
+
+impl Default for Budget {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// The state of a run after initialisation (iteration 0) or after a step.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct IterationRecord {
+    pub iteration: usize,
+    /// Evaluations spent so far, initialisation included.
+    pub evaluations: u64,
+    pub best_cost: f64,
+    pub best_violation: f64,
+}
+
+/// Why a run stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Termination {
+    MaxIterations,
+    MaxEvaluations,
+    /// Under an evaluations-only budget a step spent no evaluation, so the run could never
+    /// end by budget. The built-in optimizers never do this; the guard protects the loop
+    /// from a faulty custom optimizer.
+    Stalled,
+}
+
+/// Result of one run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Outcome {
+    pub best_x: Vec<f64>,
+    pub best: Evaluation,
+    /// Evaluations spent, initialisation included; never more than the budget.
+    pub evaluations: u64,
+    /// Steps taken after initialisation (the last may have been cut short by the budget).
+    pub iterations: usize,
+    pub termination: Termination,
+    /// One record after initialisation and one per step.
+    pub trace: Vec<IterationRecord>,
+}
+
+/// Runs `optimizer` on `problem` until the budget is spent, calling `observer` after
+/// initialisation and after every step. Same seed, same result: nothing here is parallel.
+pub fn solve(
+    problem: &dyn Problem,
+    optimizer: &mut dyn Optimizer,
+    budget: Budget,
+    rng: &mut Rng,
+    observer: &mut dyn FnMut(&IterationRecord),
+) -> Outcome {
+    let max_iterations = budget.max_iterations();
+    let planned = budget.planned_iterations(optimizer.evaluations_per_iteration());
+    let mut ev = Evaluator::new(problem, budget.evaluations);
+    optimizer.init(&mut ev, rng, planned);
+
+    let mut trace = Vec::with_capacity(max_iterations.unwrap_or(planned).min(1 << 16) + 1);
+    let mut emit = |iteration: usize, ev: &Evaluator<'_>, opt: &dyn Optimizer| {
+        let (_, best) = opt.best();
+        let rec = IterationRecord {
+            iteration,
+            evaluations: ev.count(),
+            best_cost: best.cost,
+            best_violation: best.violation,
+        };
+        observer(&rec);
+        trace.push(rec);
+    };
+    emit(0, &ev, optimizer);
+
+    let mut iteration = 0;
+    let termination = loop {
+        if ev.is_exhausted() {
+            break Termination::MaxEvaluations;
+        }
+        if max_iterations.is_some_and(|m| iteration >= m) {
+            break Termination::MaxIterations;
+        }
+        if ev.remaining() == Some(0) {
+            break Termination::MaxEvaluations;
+        }
+        let before = ev.count();
+        optimizer.step(&mut ev, rng);
+        iteration += 1;
+        emit(iteration, &ev, optimizer);
+        if max_iterations.is_none() && ev.count() == before && !ev.is_exhausted() {
+            break Termination::Stalled;
+        }
+    };
+
+    let (best_x, best) = optimizer.best();
+    Outcome {
+        best_x: best_x.to_vec(),
+        best,
+        evaluations: ev.count(),
+        iterations: iteration,
+        termination,
+        trace,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn planned_iterations_follow_the_tighter_limit() {
+        assert_eq!(Budget::default().planned_iterations(50), 200);
+        assert_eq!(
+            Budget {
+                iterations: None,
+                evaluations: None
+            }
+            .planned_iterations(50),
+            200
+        );
+        // 10,000 evaluations at 50 per iteration: 50 for initialisation, 199 steps.
+        assert_eq!(Budget::evaluations(10_000).planned_iterations(50), 199);
+        let both = Budget {
+            iterations: Some(100),
+            evaluations: Some(10_000),
+        };
+        assert_eq!(both.planned_iterations(50), 100);
+        assert_eq!(Budget::evaluations(3).planned_iterations(50), 1);
+    }
+}

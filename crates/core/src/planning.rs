@@ -1,0 +1,75 @@
+//! The planning problem as optimizers see it: a world, an encoding, and an evaluation that
+//! decodes a vector into a plan and assesses it.
+//!
+//! Evaluation is pure but needs buffers; each thread keeps its own (`thread_local!`) so a
+//! problem can be shared by reference across threads without locks and without allocating
+//! per evaluation.
+
+use std::cell::RefCell;
+
+use crate::cost::{assess, assess_into, Assessment, Scratch};
+use crate::encoding::{self, EncodingKind, PathEncoding};
+use crate::feasibility::ViolationSink;
+use crate::plan::Plan;
+use crate::problem::{Bound, Evaluation, Problem};
+use crate::world::World;
+
+/// A world with an encoding.
+pub struct PlanningProblem<'w> {
+    world: &'w World,
+    encoding: Box<dyn PathEncoding>,
+    kind: EncodingKind,
+}
+
+thread_local! {
+    static BUFFERS: RefCell<(Plan, Scratch)> = RefCell::new((Plan::default(), Scratch::default()));
+}
+
+impl<'w> PlanningProblem<'w> {
+    #[must_use]
+    pub fn new(world: &'w World, kind: EncodingKind) -> Self {
+        Self {
+            world,
+            encoding: encoding::build(kind, world),
+            kind,
+        }
+    }
+
+    #[must_use]
+    pub fn world(&self) -> &World {
+        self.world
+    }
+
+    #[must_use]
+    pub fn encoding(&self) -> EncodingKind {
+        self.kind
+    }
+
+    #[must_use]
+    pub fn decode(&self, x: &[f64]) -> Plan {
+        self.encoding.decode(x)
+    }
+
+    /// Full assessment (with the violation list) of the plan that `x` decodes to.
+    #[must_use]
+    pub fn assess(&self, x: &[f64]) -> Assessment {
+        assess(self.world, &self.decode(x), true)
+    }
+}
+
+impl Problem for PlanningProblem<'_> {
+    fn bounds(&self) -> &[Bound] {
+        self.encoding.bounds()
+    }
+
+    fn evaluate(&self, x: &[f64]) -> Evaluation {
+        BUFFERS.with(|b| {
+            let mut b = b.borrow_mut();
+            let (plan, scratch) = &mut *b;
+            self.encoding.decode_into(x, plan);
+            let mut sink = ViolationSink::default();
+            let (cost, violation) = assess_into(self.world, plan, scratch, &mut sink, false);
+            Evaluation::new(cost, violation)
+        })
+    }
+}

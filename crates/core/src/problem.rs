@@ -1,0 +1,135 @@
+//! The interface between a planning problem and an optimizer.
+//!
+//! An optimizer sees only box bounds and a pure, infallible evaluation. Keeping this narrow
+//! lets any optimizer run on any encoding of any scenario, and on plain test functions.
+
+use serde::{Deserialize, Serialize};
+
+/// Bounds of one decision variable. `periodic` marks an angle that wraps: optimizers may
+/// wrap it instead of clamping.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Bound {
+    pub lo: f64,
+    pub hi: f64,
+    pub periodic: bool,
+}
+
+impl Bound {
+    #[must_use]
+    pub const fn new(lo: f64, hi: f64) -> Self {
+        Self {
+            lo,
+            hi,
+            periodic: false,
+        }
+    }
+
+    #[must_use]
+    pub const fn periodic(lo: f64, hi: f64) -> Self {
+        Self {
+            lo,
+            hi,
+            periodic: true,
+        }
+    }
+
+    #[must_use]
+    pub fn width(&self) -> f64 {
+        self.hi - self.lo
+    }
+
+    /// Brings `x` into the bound: wraps periodic bounds, clamps the others.
+    #[must_use]
+    pub fn project(&self, x: f64) -> f64 {
+        if self.periodic {
+            let w = self.width();
+            if w > 0.0 && x.is_finite() {
+                return self.lo + (x - self.lo).rem_euclid(w);
+            }
+        }
+        x.clamp(self.lo, self.hi)
+    }
+
+    #[must_use]
+    pub fn contains(&self, x: f64) -> bool {
+        x >= self.lo && x <= self.hi
+    }
+}
+
+/// Result of one evaluation. Lower cost is better; `violation` is 0 exactly when the
+/// candidate satisfies every hard constraint (it is a measure of how far it is from that).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Evaluation {
+    pub cost: f64,
+    pub violation: f64,
+}
+
+impl Evaluation {
+    /// An evaluation with NaN mapped to +inf, so a NaN never wins a comparison.
+    #[must_use]
+    pub fn new(cost: f64, violation: f64) -> Self {
+        Self {
+            cost: if cost.is_nan() { f64::INFINITY } else { cost },
+            violation: if violation.is_nan() {
+                f64::INFINITY
+            } else {
+                violation
+            },
+        }
+    }
+
+    #[must_use]
+    pub const fn worst() -> Self {
+        Self {
+            cost: f64::INFINITY,
+            violation: f64::INFINITY,
+        }
+    }
+
+    #[must_use]
+    pub fn feasible(&self) -> bool {
+        self.violation == 0.0
+    }
+
+    /// Strictly better by cost (total order; NaN was mapped to +inf at construction).
+    #[must_use]
+    pub fn better_than(&self, other: &Self) -> bool {
+        self.cost.total_cmp(&other.cost).is_lt()
+    }
+}
+
+/// A minimisation problem over a box.
+pub trait Problem: Sync {
+    /// One bound per decision variable.
+    fn bounds(&self) -> &[Bound];
+
+    /// Pure and infallible: same `x`, same result; never touches a random generator.
+    fn evaluate(&self, x: &[f64]) -> Evaluation;
+
+    fn dimension(&self) -> usize {
+        self.bounds().len()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn periodic_bound_wraps_and_plain_bound_clamps() {
+        let p = Bound::periodic(-1.0, 1.0);
+        assert!((p.project(1.5) - (-0.5)).abs() < 1e-12);
+        assert!((p.project(-1.5) - 0.5).abs() < 1e-12);
+        let b = Bound::new(-1.0, 1.0);
+        assert_eq!(b.project(1.5), 1.0);
+        assert_eq!(b.project(-7.0), -1.0);
+    }
+
+    #[test]
+    fn nan_never_wins() {
+        let nan = Evaluation::new(f64::NAN, 0.0);
+        let one = Evaluation::new(1.0, 0.0);
+        assert!(one.better_than(&nan));
+        assert!(!nan.better_than(&one));
+    }
+}

@@ -1,0 +1,212 @@
+//! When each UAV is where. The paper needs time (Eq. 4 speeds, Eq. 6 time steps) but never
+//! defines it; DESIGN.md's timing policies do:
+//! - *common arrival* (default): all UAVs leave at t = 0 and arrive together at T, each at
+//!   constant speed v_i = L_i / T. T minimises sum_i (v_i - cruise_i)^2 in closed form
+//!   (1/T = sum L_i c_i / sum L_i^2) and is then clamped into the interval where every v_i
+//!   lies in [v_min, v_max]; when that interval is empty the speeds break their limits and the
+//!   safety term and the feasibility checker say so.
+//! - *cruise*: every UAV flies at its own cruise speed.
+//!
+//! Positions at any time come from arc-length interpolation along the absolute-altitude
+//! polyline. Buffers are reused between evaluations (`fill` methods) to keep the hot path
+//! free of allocations.
+
+use glam::DVec3;
+
+use crate::plan::{Path, Plan};
+use crate::world::spec::TimingPolicy;
+use crate::world::World;
+
+/// One UAV's path with absolute altitudes, arc lengths and speed.
+#[derive(Debug, Clone, Default)]
+pub struct TimedPath {
+    /// Waypoints with absolute altitude (z + ground height).
+    pub abs: Vec<DVec3>,
+    /// Cumulative 3-D arc length at each waypoint (cum[0] = 0).
+    pub cum: Vec<f64>,
+    /// Total length L_i (metres).
+    pub length: f64,
+    /// Constant speed (m/s).
+    pub speed: f64,
+    /// Arrival time (s).
+    pub arrival: f64,
+}
+
+impl TimedPath {
+    fn fill_geometry(&mut self, world: &World, path: &Path) {
+        self.abs.clear();
+        self.cum.clear();
+        let mut s = 0.0;
+        for (k, p) in path.waypoints.iter().enumerate() {
+            let a = world.absolute(*p);
+            if k > 0 {
+                s += a.distance(self.abs[k - 1]);
+            }
+            self.abs.push(a);
+            self.cum.push(s);
+        }
+        self.length = s;
+    }
+
+    /// Time at which waypoint k is reached.
+    #[must_use]
+    pub fn time_at(&self, k: usize) -> f64 {
+        if self.speed > 0.0 {
+            self.cum[k] / self.speed
+        } else {
+            0.0
+        }
+    }
+
+    /// Position at arc length `s` (clamped to the path), searching from segment `hint`
+    /// onwards; returns the position and the segment used (a hint for the next call).
+    #[must_use]
+    pub fn position_at_length(&self, s: f64, hint: usize) -> (DVec3, usize) {
+        let last = self.abs.len() - 1;
+        if last == 0 || s <= 0.0 {
+            return (self.abs[0], 0);
+        }
+        if s >= self.length {
+            return (self.abs[last], last - 1);
+        }
+        let mut k = hint.min(last - 1);
+        while k > 0 && self.cum[k] > s {
+            k -= 1;
+        }
+        while k + 1 < last && self.cum[k + 1] < s {
+            k += 1;
+        }
+        let seg = self.cum[k + 1] - self.cum[k];
+        let f = if seg > 0.0 { (s - self.cum[k]) / seg } else { 0.0 };
+        (self.abs[k].lerp(self.abs[k + 1], f), k)
+    }
+
+    /// Position at time t (the UAV waits at its goal after arriving).
+    #[must_use]
+    pub fn position_at_time(&self, t: f64) -> DVec3 {
+        self.position_at_length(self.speed * t, 0).0
+    }
+}
+
+/// Every UAV's timed path and the mission horizon.
+#[derive(Debug, Clone, Default)]
+pub struct TimedPlan {
+    pub paths: Vec<TimedPath>,
+    /// Latest arrival (s).
+    pub horizon: f64,
+}
+
+impl TimedPlan {
+    #[must_use]
+    pub fn new(world: &World, plan: &Plan) -> Self {
+        let mut t = Self::default();
+        t.fill(world, plan);
+        t
+    }
+
+    /// Recomputes geometry and schedule for `plan`, reusing buffers.
+    pub fn fill(&mut self, world: &World, plan: &Plan) {
+        let n = plan.uavs.len();
+        self.paths.resize_with(n, TimedPath::default);
+        for (tp, path) in self.paths.iter_mut().zip(&plan.uavs) {
+            tp.fill_geometry(world, path);
+        }
+        let uavs = &world.spec.uavs;
+        match world.spec.timing.policy {
+            TimingPolicy::Cruise => {
+                for (tp, u) in self.paths.iter_mut().zip(uavs) {
+                    tp.speed = u.cruise_speed;
+                    tp.arrival = tp.length / tp.speed;
+                }
+            }
+            TimingPolicy::CommonArrival => {
+                let t = common_arrival_time(
+                    self.paths
+                        .iter()
+                        .zip(uavs)
+                        .map(|(p, u)| (p.length, u.cruise_speed, u.speed[0], u.speed[1])),
+                );
+                for tp in &mut self.paths {
+                    tp.speed = if t > 0.0 { tp.length / t } else { 0.0 };
+                    tp.arrival = t;
+                }
+            }
+        }
+        self.horizon = self.paths.iter().map(|p| p.arrival).fold(0.0, f64::max);
+    }
+}
+
+impl TimedPlan {
+    /// Positions of every UAV at time `t` into `out`; `hints` (one per UAV, start at 0) make
+    /// a forward sweep over increasing times linear in samples plus segments.
+    pub fn sample(&self, t: f64, hints: &mut [usize], out: &mut [DVec3]) {
+        for ((tp, h), o) in self.paths.iter().zip(hints.iter_mut()).zip(out.iter_mut()) {
+            let (p, k) = tp.position_at_length(tp.speed * t, *h);
+            *h = k;
+            *o = p;
+        }
+    }
+}
+
+/// The common arrival time T for paths given as (length, cruise, v_min, v_max).
+#[must_use]
+pub fn common_arrival_time(paths: impl Iterator<Item = (f64, f64, f64, f64)> + Clone) -> f64 {
+    let (mut num, mut den) = (0.0, 0.0);
+    let (mut lo, mut hi) = (0.0_f64, f64::INFINITY);
+    for (l, c, vmin, vmax) in paths {
+        num += l * l;
+        den += l * c;
+        lo = lo.max(l / vmax);
+        hi = hi.min(l / vmin);
+    }
+    if num == 0.0 {
+        return 0.0;
+    }
+    let preferred = num / den;
+    if lo <= hi {
+        preferred.clamp(lo, hi)
+    } else {
+        // No T satisfies every UAV: take the middle of the conflict so both sides break
+        // their limits as little as possible (in ratio).
+        (lo * hi).sqrt()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn preferred_time_is_cruise_for_equal_paths() {
+        let t = common_arrival_time([(1500.0, 15.0, 5.0, 25.0); 3].into_iter());
+        assert!((t - 100.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn time_is_clamped_so_every_speed_is_legal() {
+        // 1000 m and 3000 m paths: cruise-optimal T would make the long one too fast.
+        let t = common_arrival_time([(1000.0, 15.0, 5.0, 25.0), (3000.0, 15.0, 5.0, 25.0)].into_iter());
+        assert!(3000.0 / t <= 25.0 + 1e-9 && 1000.0 / t >= 5.0 - 1e-9);
+        assert!((t - 120.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn impossible_spread_breaks_limits() {
+        let t = common_arrival_time([(100.0, 15.0, 5.0, 25.0), (10_000.0, 15.0, 5.0, 25.0)].into_iter());
+        assert!(100.0 / t < 5.0 || 10_000.0 / t > 25.0);
+    }
+
+    #[test]
+    fn position_interpolates_by_arc_length() {
+        let tp = TimedPath {
+            abs: vec![DVec3::ZERO, DVec3::new(10.0, 0.0, 0.0), DVec3::new(10.0, 10.0, 0.0)],
+            cum: vec![0.0, 10.0, 20.0],
+            length: 20.0,
+            speed: 2.0,
+            arrival: 10.0,
+        };
+        assert!(tp.position_at_time(2.5).distance(DVec3::new(5.0, 0.0, 0.0)) < 1e-12);
+        assert!(tp.position_at_time(7.5).distance(DVec3::new(10.0, 5.0, 0.0)) < 1e-12);
+        assert!(tp.position_at_time(99.0).distance(DVec3::new(10.0, 10.0, 0.0)) < 1e-12);
+    }
+}

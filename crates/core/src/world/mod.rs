@@ -1,0 +1,145 @@
+//! The world a plan lives in: terrain, threats, fleet, channel, energy model and the
+//! objective's settings, validated and precomputed once per scenario.
+//!
+//! [`ScenarioSpec`] is what a file says; [`World`] is what the cost function reads. Building
+//! the world validates the spec, so evaluation never has to check anything.
+
+pub mod channel;
+pub mod energy;
+pub mod procedural;
+pub mod spec;
+pub mod terrain;
+pub mod threat;
+pub mod validate;
+
+use glam::DVec3;
+use thiserror::Error;
+
+pub use channel::Channel;
+pub use spec::ScenarioSpec;
+pub use terrain::{Sampling, Terrain};
+pub use threat::Threat;
+pub use validate::SpecError;
+
+/// A ground radio node (ground control station, UGV0, extra relays), absolute position.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GroundNode {
+    pub name: String,
+    /// Antenna position, absolute altitude.
+    pub position: DVec3,
+}
+
+#[derive(Debug, Error)]
+pub enum WorldError {
+    #[error(transparent)]
+    Spec(#[from] SpecError),
+    #[error("uavs[{uav}].start: ({x}, {y}) is outside the map box x {bx:?}, y {by:?}")]
+    StartOutside {
+        uav: usize,
+        x: f64,
+        y: f64,
+        bx: [f64; 2],
+        by: [f64; 2],
+    },
+    #[error("goal.position: ({x}, {y}) is outside the map box x {bx:?}, y {by:?}")]
+    GoalOutside {
+        x: f64,
+        y: f64,
+        bx: [f64; 2],
+        by: [f64; 2],
+    },
+}
+
+/// A validated scenario with its terrain and channel.
+#[derive(Debug, Clone)]
+pub struct World {
+    pub spec: ScenarioSpec,
+    pub terrain: Terrain,
+    pub channel: Channel,
+    /// Ground nodes: the ground station (if on), UGV0, then the extra nodes.
+    pub ground_nodes: Vec<GroundNode>,
+    /// Goal [x, y, z_agl].
+    pub goal: DVec3,
+}
+
+impl World {
+    /// Validates `spec` and builds the world on `terrain`.
+    pub fn new(spec: ScenarioSpec, terrain: Terrain) -> Result<Self, WorldError> {
+        spec.validate()?;
+        let (bx, by) = (spec.map.x, spec.map.y);
+        let inside = |x: f64, y: f64| x >= bx[0] && x <= bx[1] && y >= by[0] && y <= by[1];
+        for (k, u) in spec.uavs.iter().enumerate() {
+            if !inside(u.start[0], u.start[1]) {
+                return Err(WorldError::StartOutside {
+                    uav: k,
+                    x: u.start[0],
+                    y: u.start[1],
+                    bx,
+                    by,
+                });
+            }
+        }
+        let g = spec.goal.position;
+        if !inside(g[0], g[1]) {
+            return Err(WorldError::GoalOutside {
+                x: g[0],
+                y: g[1],
+                bx,
+                by,
+            });
+        }
+        let ground = |x: f64, y: f64, antenna: f64| DVec3::new(x, y, terrain.height(x, y) + antenna);
+        let mut ground_nodes = Vec::new();
+        if spec.communication.ground_station {
+            let s = spec.uavs[0].start;
+            ground_nodes.push(GroundNode {
+                name: "GCS".into(),
+                position: ground(s[0], s[1], spec.goal.antenna),
+            });
+        }
+        ground_nodes.push(GroundNode {
+            name: "UGV0".into(),
+            position: ground(g[0], g[1], spec.goal.antenna),
+        });
+        for n in &spec.communication.ground_nodes {
+            ground_nodes.push(GroundNode {
+                name: n.name.clone(),
+                position: ground(n.position[0], n.position[1], n.antenna),
+            });
+        }
+        let channel = Channel::new(&spec.communication);
+        Ok(Self {
+            goal: DVec3::from_array(g),
+            spec,
+            terrain,
+            channel,
+            ground_nodes,
+        })
+    }
+
+    #[must_use]
+    pub fn uav_count(&self) -> usize {
+        self.spec.uavs.len()
+    }
+
+    /// Start of UAV i as [x, y, z_agl].
+    #[must_use]
+    pub fn start(&self, i: usize) -> DVec3 {
+        DVec3::from_array(self.spec.uavs[i].start)
+    }
+
+    /// Absolute altitude of a point given as [x, y, z_agl].
+    ///
+    /// Under SPSO's nearest-cell sampling the sum is rounded to single precision, as MATLAB
+    /// does when SPSO adds a double z to its `single` DEM (`z + H(...)` is `single`); this
+    /// is what lets the `spso` cross-check match the reference to 1e-9.
+    #[must_use]
+    pub fn absolute(&self, p: DVec3) -> DVec3 {
+        let h = self.terrain.height(p.x, p.y);
+        let z = match self.terrain.sampling() {
+            Sampling::Bilinear => p.z + h,
+            Sampling::NearestMatlab => f64::from(p.z as f32 + h as f32),
+        };
+        DVec3::new(p.x, p.y, z)
+    }
+}

@@ -1,0 +1,386 @@
+//! The scenario as written in a TOML file: plain serde structs, every field documented with
+//! its default. Unknown fields are rejected. [`ScenarioSpec::validate`] checks values and
+//! names the offending field; [`crate::world::World::new`] turns a valid spec into the
+//! precomputed world the cost function reads.
+
+use serde::{Deserialize, Serialize};
+
+use super::energy::RotaryWing;
+use super::threat::Threat;
+
+/// One scenario: terrain, map, threats, fleet, goal, channel, energy, objective, timing.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ScenarioSpec {
+    /// Short identifier (e.g. `paper-case1`).
+    pub name: String,
+    /// One line for humans.
+    #[serde(default)]
+    pub description: String,
+    #[serde(default)]
+    pub terrain: TerrainSpec,
+    #[serde(default)]
+    pub map: MapSpec,
+    #[serde(default)]
+    pub threats: Vec<Threat>,
+    /// UGV0: where every UAV lands.
+    pub goal: GoalSpec,
+    /// One entry per UAV.
+    pub uavs: Vec<UavSpec>,
+    #[serde(default)]
+    pub communication: CommSpec,
+    #[serde(default)]
+    pub energy: EnergySpec,
+    #[serde(default)]
+    pub objective: ObjectiveSpec,
+    #[serde(default)]
+    pub timing: TimingSpec,
+    #[serde(default)]
+    pub planning: PlanningSpec,
+}
+
+/// Where the height grid comes from and how it is read.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct TerrainSpec {
+    /// `procedural` (built in, from `procedural` below) or a path to a GeoTIFF / ESRI ASCII
+    /// grid, relative to the scenario file.
+    pub source: String,
+    /// `spso-pixels`: one cell = 1 m, x = column + 1, y = file row + 1 (SPSO's convention);
+    /// `georeferenced`: cell size and orientation from the file, origin at its south-west node.
+    pub frame: TerrainFrame,
+    /// `bilinear` (default) or `nearest-matlab` (SPSO's `H(round(y), round(x))`).
+    pub sampling: super::terrain::Sampling,
+    /// Parameters of the procedural terrain (used when `source = "procedural"`).
+    pub procedural: super::procedural::ProceduralParams,
+}
+
+impl Default for TerrainSpec {
+    fn default() -> Self {
+        Self {
+            source: "procedural".into(),
+            frame: TerrainFrame::SpsoPixels,
+            sampling: super::terrain::Sampling::Bilinear,
+            procedural: super::procedural::ProceduralParams::default(),
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum TerrainFrame {
+    #[default]
+    SpsoPixels,
+    Georeferenced,
+}
+
+/// The box waypoints live in, and the altitude band above ground.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct MapSpec {
+    /// x range, metres ([1, 1045], SPSO's map).
+    pub x: [f64; 2],
+    /// y range, metres ([1, 879]).
+    pub y: [f64; 2],
+    /// Height above ground of free waypoints, metres ([100, 200], SPSO's z band).
+    pub z_agl: [f64; 2],
+    /// Minimum clearance above terrain along every segment, metres (10).
+    pub clearance: f64,
+    /// Spacing of the terrain samples along a segment, metres (5).
+    pub clearance_step: f64,
+}
+
+impl Default for MapSpec {
+    fn default() -> Self {
+        Self {
+            x: [1.0, 1045.0],
+            y: [1.0, 879.0],
+            z_agl: [100.0, 200.0],
+            clearance: 10.0,
+            clearance_step: 5.0,
+        }
+    }
+}
+
+/// UGV0, the landing point shared by the fleet.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GoalSpec {
+    /// Position [x, y] and arrival height above ground [z] of the UAVs, metres.
+    pub position: [f64; 3],
+    /// Antenna height of UGV0 above ground, metres (2).
+    #[serde(default = "default_antenna")]
+    pub antenna: f64,
+}
+
+fn default_antenna() -> f64 {
+    2.0
+}
+
+/// One UAV: start, kinematic limits, payload, battery.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct UavSpec {
+    /// Start [x, y, z above ground], metres ((200, 100, 150) in the paper).
+    pub start: [f64; 3],
+    /// Maximum turn angle at a waypoint, degrees (45; turning radius 50 m).
+    pub max_turn_deg: f64,
+    /// Maximum climb / dive angle of a segment, degrees (45).
+    pub max_climb_deg: f64,
+    /// Speed range [v_min, v_max], m/s ([5, 25]).
+    pub speed: [f64; 2],
+    /// Preferred cruise speed, m/s (15).
+    pub cruise_speed: f64,
+    /// Payload W_i, kg (0.5).
+    pub payload_kg: f64,
+    /// Maximum payload W_max, kg (1.0).
+    pub max_payload_kg: f64,
+    /// Battery capacity, watt-hours (see docs/model.md for the calibration).
+    pub battery_wh: f64,
+    /// Fraction of the battery kept in reserve (0.2).
+    pub reserve: f64,
+    /// Drone size for the threat and danger distances, metres (1, as SPSO).
+    pub size: f64,
+}
+
+impl Default for UavSpec {
+    fn default() -> Self {
+        Self {
+            start: [200.0, 100.0, 150.0],
+            max_turn_deg: 45.0,
+            max_climb_deg: 45.0,
+            speed: [5.0, 25.0],
+            cruise_speed: 15.0,
+            payload_kg: 0.5,
+            max_payload_kg: 1.0,
+            battery_wh: 4.5,
+            reserve: 0.2,
+            size: 1.0,
+        }
+    }
+}
+
+/// Which connectivity counts as "in contact".
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum CommRequirement {
+    /// Every UAV is connected to a ground node, possibly through other UAVs (default).
+    #[default]
+    Relay,
+    /// Every UAV has at least one link to any node (the paper's wording, relaxed).
+    Neighbour,
+    /// Communication is not checked.
+    None,
+}
+
+/// A ground node besides UGV0 and the ground station.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroundNodeSpec {
+    pub name: String,
+    /// [x, y], metres.
+    pub position: [f64; 2],
+    /// Antenna height above ground, metres (2).
+    #[serde(default = "default_antenna")]
+    pub antenna: f64,
+}
+
+/// A scheduled interference window: extra loss on every link with an end inside the disk.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InterferenceSpec {
+    /// [start, end] time, seconds.
+    pub time: [f64; 2],
+    /// Disk centre [x, y], metres.
+    pub center: [f64; 2],
+    /// Disk radius, metres.
+    pub radius: f64,
+    /// Extra path loss, dB.
+    pub loss_db: f64,
+}
+
+/// The time-varying channel.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CommSpec {
+    pub requirement: CommRequirement,
+    /// Nominal range R0, metres.
+    pub range: f64,
+    /// Shadowing standard deviation sigma, dB (4).
+    pub shadowing_sigma_db: f64,
+    /// Shadowing correlation time tau, seconds (10).
+    pub shadowing_tau_s: f64,
+    /// Seed of the shadowing process (the channel is generated once per scenario).
+    pub seed: u64,
+    /// Time step of the connectivity check, seconds (1).
+    pub time_step: f64,
+    /// Longest tolerated outage of one UAV, seconds in a row (5).
+    pub max_outage_s: f64,
+    /// Check line of sight against the terrain (true).
+    pub line_of_sight: bool,
+    /// Spacing of line-of-sight samples, metres (10).
+    pub line_of_sight_step: f64,
+    /// A ground control station at the shared start (true).
+    pub ground_station: bool,
+    /// Cost of each UAV-second out of contact, metres-equivalent (10), added to the gap.
+    pub outage_base_cost: f64,
+    pub ground_nodes: Vec<GroundNodeSpec>,
+    pub interference: Vec<InterferenceSpec>,
+}
+
+impl Default for CommSpec {
+    fn default() -> Self {
+        Self {
+            requirement: CommRequirement::Relay,
+            range: 700.0,
+            shadowing_sigma_db: 4.0,
+            shadowing_tau_s: 10.0,
+            seed: 1,
+            time_step: 1.0,
+            max_outage_s: 5.0,
+            line_of_sight: true,
+            line_of_sight_step: 10.0,
+            ground_station: true,
+            outage_base_cost: 10.0,
+            ground_nodes: Vec::new(),
+            interference: Vec::new(),
+        }
+    }
+}
+
+/// Energy: the paper's Eq. 5 objective weights and the physical model for the battery.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct EnergySpec {
+    /// alpha of Eq. 5: weight of |dz| (per metre of altitude change) (1).
+    pub alpha: f64,
+    /// beta of Eq. 5: weight of |d heading| (per radian) (10).
+    pub beta: f64,
+    /// Rotary-wing power model (Zeng, Xu, Zhang 2019).
+    pub model: RotaryWing,
+}
+
+impl Default for EnergySpec {
+    fn default() -> Self {
+        Self {
+            alpha: 1.0,
+            beta: 10.0,
+            model: RotaryWing::default(),
+        }
+    }
+}
+
+/// Which objective is minimised.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum ObjectivePreset {
+    /// SPSO terms per UAV plus the paper's cooperative terms, hard violations penalised.
+    #[default]
+    Paper,
+    /// SPSO's MyCost exactly (collisions cost +inf); single-UAV cross-checks.
+    Spso,
+}
+
+/// Weights of Eq. 2 (the paper's w1..w6) on top of SPSO's per-UAV terms.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ObjectiveSpec {
+    pub preset: ObjectivePreset,
+    /// b1: SPSO path length weight (5).
+    pub length: f64,
+    /// b2: SPSO threat band weight (1).
+    pub threat: f64,
+    /// b3: SPSO altitude weight (10).
+    pub altitude: f64,
+    /// b4: SPSO smoothness weight (1).
+    pub smoothness: f64,
+    /// w2: J_safety, per speed / payload violation indicator (Eq. 4) (100).
+    pub safety: f64,
+    /// w3: J_energy, Eq. 5 (0.05).
+    pub energy: f64,
+    /// w4: J_communication (1).
+    pub communication: f64,
+    /// w5: J_turning, Eq. 7, per rad^2 (1).
+    pub turning: f64,
+    /// w6: J_obstacle, Eq. 8 at equal times (100).
+    pub obstacle: f64,
+    /// epsilon of Eq. 8, m^2 (1).
+    pub obstacle_epsilon: f64,
+    /// Penalty per unit of hard-constraint violation (1000); 0 drops the penalty.
+    pub violation_penalty: f64,
+}
+
+impl Default for ObjectiveSpec {
+    fn default() -> Self {
+        Self {
+            preset: ObjectivePreset::Paper,
+            length: 5.0,
+            threat: 1.0,
+            altitude: 10.0,
+            smoothness: 1.0,
+            safety: 100.0,
+            energy: 0.05,
+            communication: 1.0,
+            turning: 1.0,
+            obstacle: 100.0,
+            obstacle_epsilon: 1.0,
+            violation_penalty: 1000.0,
+        }
+    }
+}
+
+/// How UAVs are scheduled along their paths.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum TimingPolicy {
+    /// All leave at t = 0 and arrive together; speeds L_i / T nearest to cruise (default).
+    #[default]
+    CommonArrival,
+    /// Every UAV flies at its own cruise speed.
+    Cruise,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct TimingSpec {
+    pub policy: TimingPolicy,
+    /// Minimum distance between two UAVs at the same time, metres (10).
+    pub separation: f64,
+    /// Radius of the take-off and landing zones where separation is not required, m (30).
+    pub zone_radius: f64,
+    /// Sampling interval of the separation check, seconds (0.5).
+    pub separation_step: f64,
+}
+
+impl Default for TimingSpec {
+    fn default() -> Self {
+        Self {
+            policy: TimingPolicy::CommonArrival,
+            separation: 10.0,
+            zone_radius: 30.0,
+            separation_step: 0.5,
+        }
+    }
+}
+
+/// Decision-variable layout and seeds.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PlanningSpec {
+    /// Free waypoints per UAV (10, as SPSO).
+    pub waypoints: usize,
+    /// Spherical encoding with SPSO's angle convention (x uses sin phi) (false).
+    pub spso_angles: bool,
+    /// Default seed of `plan` when none is given.
+    pub seed: u64,
+}
+
+impl Default for PlanningSpec {
+    fn default() -> Self {
+        Self {
+            waypoints: 10,
+            spso_angles: false,
+            seed: 1,
+        }
+    }
+}

@@ -1,0 +1,186 @@
+//! Checks a [`ScenarioSpec`] before anything is built from it, so the hot path can assume
+//! valid values. Each error names the field (`uavs[2].speed`) and what was expected.
+
+use thiserror::Error;
+
+use super::spec::{ObjectivePreset, ScenarioSpec};
+
+/// A field with a bad value.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[error("{field}: {expected}, got {got}")]
+pub struct SpecError {
+    pub field: String,
+    pub expected: String,
+    pub got: String,
+}
+
+fn err(field: impl Into<String>, expected: impl Into<String>, got: impl ToString) -> SpecError {
+    SpecError {
+        field: field.into(),
+        expected: expected.into(),
+        got: got.to_string(),
+    }
+}
+
+fn finite(field: &str, v: f64) -> Result<(), SpecError> {
+    if v.is_finite() {
+        Ok(())
+    } else {
+        Err(err(field, "a finite number", v))
+    }
+}
+
+fn positive(field: &str, v: f64) -> Result<(), SpecError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(err(field, "a positive number", v))
+    }
+}
+
+fn non_negative(field: &str, v: f64) -> Result<(), SpecError> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(())
+    } else {
+        Err(err(field, "a number >= 0", v))
+    }
+}
+
+fn range(field: &str, r: [f64; 2]) -> Result<(), SpecError> {
+    if r[0].is_finite() && r[1].is_finite() && r[0] < r[1] {
+        Ok(())
+    } else {
+        Err(err(field, "[lo, hi] with lo < hi", format!("{r:?}")))
+    }
+}
+
+impl ScenarioSpec {
+    /// Checks every value; the first problem found is returned.
+    pub fn validate(&self) -> Result<(), SpecError> {
+        if self.name.trim().is_empty() {
+            return Err(err("name", "a non-empty name", "\"\""));
+        }
+        let m = &self.map;
+        range("map.x", m.x)?;
+        range("map.y", m.y)?;
+        range("map.z_agl", m.z_agl)?;
+        non_negative("map.clearance", m.clearance)?;
+        positive("map.clearance_step", m.clearance_step)?;
+        self.terrain
+            .procedural
+            .validate()
+            .map_err(|e| err("terrain.procedural", "valid parameters", e))?;
+        for (k, t) in self.threats.iter().enumerate() {
+            finite(&format!("threats[{k}].x"), t.x)?;
+            finite(&format!("threats[{k}].y"), t.y)?;
+            finite(&format!("threats[{k}].z"), t.z)?;
+            positive(&format!("threats[{k}].r"), t.r)?;
+        }
+        let g = &self.goal;
+        for (c, v) in ["x", "y", "z"].iter().zip(g.position) {
+            finite(&format!("goal.position.{c}"), v)?;
+        }
+        non_negative("goal.antenna", g.antenna)?;
+        if self.uavs.is_empty() {
+            return Err(err("uavs", "at least one UAV", 0));
+        }
+        for (k, u) in self.uavs.iter().enumerate() {
+            let f = |s: &str| format!("uavs[{k}].{s}");
+            for (c, v) in ["x", "y", "z"].iter().zip(u.start) {
+                finite(&f(&format!("start.{c}")), v)?;
+            }
+            for (name, v) in [("max_turn_deg", u.max_turn_deg), ("max_climb_deg", u.max_climb_deg)] {
+                if !(v > 0.0 && v <= 180.0) {
+                    return Err(err(f(name), "an angle in (0, 180] degrees", v));
+                }
+            }
+            range(&f("speed"), u.speed)?;
+            if u.speed[0] <= 0.0 {
+                return Err(err(f("speed"), "v_min > 0", u.speed[0]));
+            }
+            positive(&f("cruise_speed"), u.cruise_speed)?;
+            non_negative(&f("payload_kg"), u.payload_kg)?;
+            non_negative(&f("max_payload_kg"), u.max_payload_kg)?;
+            positive(&f("battery_wh"), u.battery_wh)?;
+            if !(0.0..1.0).contains(&u.reserve) {
+                return Err(err(f("reserve"), "a fraction in [0, 1)", u.reserve));
+            }
+            non_negative(&f("size"), u.size)?;
+        }
+        let c = &self.communication;
+        positive("communication.range", c.range)?;
+        non_negative("communication.shadowing_sigma_db", c.shadowing_sigma_db)?;
+        positive("communication.shadowing_tau_s", c.shadowing_tau_s)?;
+        positive("communication.time_step", c.time_step)?;
+        non_negative("communication.max_outage_s", c.max_outage_s)?;
+        positive("communication.line_of_sight_step", c.line_of_sight_step)?;
+        non_negative("communication.outage_base_cost", c.outage_base_cost)?;
+        for (k, n) in c.ground_nodes.iter().enumerate() {
+            finite(&format!("communication.ground_nodes[{k}].position.x"), n.position[0])?;
+            finite(&format!("communication.ground_nodes[{k}].position.y"), n.position[1])?;
+            non_negative(&format!("communication.ground_nodes[{k}].antenna"), n.antenna)?;
+        }
+        for (k, w) in c.interference.iter().enumerate() {
+            let f = |s: &str| format!("communication.interference[{k}].{s}");
+            range(&f("time"), w.time)?;
+            finite(&f("center.x"), w.center[0])?;
+            finite(&f("center.y"), w.center[1])?;
+            positive(&f("radius"), w.radius)?;
+            non_negative(&f("loss_db"), w.loss_db)?;
+        }
+        let e = &self.energy;
+        non_negative("energy.alpha", e.alpha)?;
+        non_negative("energy.beta", e.beta)?;
+        let em = &e.model;
+        for (name, v) in [
+            ("weight_n", em.weight_n),
+            ("air_density", em.air_density),
+            ("rotor_radius", em.rotor_radius),
+            ("disc_area", em.disc_area),
+            ("blade_angular_velocity", em.blade_angular_velocity),
+            ("tip_speed", em.tip_speed),
+            ("solidity", em.solidity),
+        ] {
+            positive(&format!("energy.model.{name}"), v)?;
+        }
+        for (name, v) in [
+            ("fuselage_drag_ratio", em.fuselage_drag_ratio),
+            ("induced_correction", em.induced_correction),
+            ("profile_drag", em.profile_drag),
+            ("turn_energy_per_rad", em.turn_energy_per_rad),
+        ] {
+            non_negative(&format!("energy.model.{name}"), v)?;
+        }
+        let o = &self.objective;
+        for (name, v) in [
+            ("length", o.length),
+            ("threat", o.threat),
+            ("altitude", o.altitude),
+            ("smoothness", o.smoothness),
+            ("safety", o.safety),
+            ("energy", o.energy),
+            ("communication", o.communication),
+            ("turning", o.turning),
+            ("obstacle", o.obstacle),
+            ("violation_penalty", o.violation_penalty),
+        ] {
+            non_negative(&format!("objective.{name}"), v)?;
+        }
+        positive("objective.obstacle_epsilon", o.obstacle_epsilon)?;
+        if o.preset == ObjectivePreset::Spso && self.uavs.len() != 1 {
+            return Err(err(
+                "objective.preset",
+                "exactly one UAV for the `spso` preset (SPSO's MyCost is single-UAV)",
+                format!("{} UAVs", self.uavs.len()),
+            ));
+        }
+        let t = &self.timing;
+        non_negative("timing.separation", t.separation)?;
+        non_negative("timing.zone_radius", t.zone_radius)?;
+        positive("timing.separation_step", t.separation_step)?;
+        if self.planning.waypoints == 0 || self.planning.waypoints > 1000 {
+            return Err(err("planning.waypoints", "between 1 and 1000", self.planning.waypoints));
+        }
+        Ok(())
+    }
+}

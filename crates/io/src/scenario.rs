@@ -1,0 +1,194 @@
+//! Scenario files: the built-in scenarios, reading and writing the TOML format
+//! (`docs/scenario.md`), and building a [`World`] with its terrain.
+//!
+//! A scenario is named either by a built-in name (`paper-case1`) or by a file path. Terrain
+//! paths inside a file are relative to that file. `--terrain FILE` replaces the source but
+//! keeps the scenario's frame and sampling, so SPSO's DEM drops into the paper cases.
+
+use std::path::{Path, PathBuf};
+
+use swarmplan_core::world::procedural::procedural_terrain;
+use swarmplan_core::world::spec::{ScenarioSpec, TerrainFrame};
+use swarmplan_core::world::{World, WorldError};
+use thiserror::Error;
+
+use crate::dem::{read_terrain, DemError, DemFrame, DemOptions};
+
+/// Built-in scenarios: (name, TOML text).
+pub const BUILTIN: [(&str, &str); 5] = [
+    ("paper-case1", include_str!("../../../scenarios/paper-case1.toml")),
+    ("paper-case2", include_str!("../../../scenarios/paper-case2.toml")),
+    ("spso-case1", include_str!("../../../scenarios/spso-case1.toml")),
+    ("spso-case2", include_str!("../../../scenarios/spso-case2.toml")),
+    ("tiny", include_str!("../../../scenarios/tiny.toml")),
+];
+
+#[derive(Debug, Error)]
+pub enum ScenarioError {
+    #[error("no built-in scenario and no file named `{name}`; built-in scenarios: {}", builtin_names().join(", "))]
+    Unknown { name: String },
+    #[error("{path}: cannot read: {source}")]
+    Read {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("{origin}: {message}")]
+    Parse { origin: String, message: String },
+    #[error("{origin}: {source}")]
+    Invalid {
+        origin: String,
+        source: WorldError,
+    },
+    #[error("{origin}: terrain.procedural: {message}")]
+    Procedural { origin: String, message: String },
+    #[error("{origin}: terrain: {source}")]
+    Terrain { origin: String, source: DemError },
+}
+
+/// Names of the built-in scenarios.
+#[must_use]
+pub fn builtin_names() -> Vec<&'static str> {
+    BUILTIN.iter().map(|(n, _)| *n).collect()
+}
+
+/// A scenario spec with where it came from.
+#[derive(Debug, Clone)]
+pub struct LoadedSpec {
+    pub spec: ScenarioSpec,
+    /// `builtin:NAME` or the file path, for messages.
+    pub origin: String,
+    /// Folder that relative terrain paths are resolved against.
+    pub base_dir: PathBuf,
+    /// The text it was parsed from.
+    pub text: String,
+}
+
+/// Reads a built-in scenario by name, or a scenario file by path.
+pub fn load_spec(name_or_path: &str) -> Result<LoadedSpec, ScenarioError> {
+    if let Some((name, text)) = BUILTIN.iter().find(|(n, _)| *n == name_or_path) {
+        let origin = format!("builtin:{name}");
+        return Ok(LoadedSpec {
+            spec: parse_spec(text, &origin)?,
+            origin,
+            base_dir: PathBuf::from("."),
+            text: (*text).to_string(),
+        });
+    }
+    let path = Path::new(name_or_path);
+    if !path.exists() {
+        return Err(ScenarioError::Unknown {
+            name: name_or_path.to_string(),
+        });
+    }
+    let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let origin = path.display().to_string();
+    Ok(LoadedSpec {
+        spec: parse_spec(&text, &origin)?,
+        origin,
+        base_dir: path.parent().map(Path::to_path_buf).unwrap_or_default(),
+        text,
+    })
+}
+
+/// Parses scenario TOML; errors name `origin`, the field and the line.
+pub fn parse_spec(text: &str, origin: &str) -> Result<ScenarioSpec, ScenarioError> {
+    let spec: ScenarioSpec = toml::from_str(text).map_err(|e| ScenarioError::Parse {
+        origin: origin.to_string(),
+        message: e.to_string().trim_end().replace('\n', "\n  "),
+    })?;
+    spec.validate().map_err(|e| ScenarioError::Invalid {
+        origin: origin.to_string(),
+        source: e.into(),
+    })?;
+    Ok(spec)
+}
+
+/// The scenario as TOML (every field written out, so it can be edited and read back).
+#[must_use]
+pub fn to_toml(spec: &ScenarioSpec) -> String {
+    toml::to_string_pretty(spec).expect("a scenario spec always serialises to TOML")
+}
+
+/// Builds the world of `loaded`, with `terrain_override` replacing its terrain source.
+pub fn build_world(loaded: &LoadedSpec, terrain_override: Option<&Path>) -> Result<World, ScenarioError> {
+    let mut spec = loaded.spec.clone();
+    let t = &spec.terrain;
+    let source: Option<PathBuf> = match terrain_override {
+        Some(p) => Some(p.to_path_buf()),
+        None if t.source == "procedural" => None,
+        None => Some(loaded.base_dir.join(&t.source)),
+    };
+    let terrain = match &source {
+        None => procedural_terrain(&t.procedural),
+        Some(path) => {
+            let opts = DemOptions {
+                frame: match t.frame {
+                    TerrainFrame::SpsoPixels => DemFrame::SpsoPixels,
+                    TerrainFrame::Georeferenced => DemFrame::Georeferenced,
+                },
+                sampling: t.sampling,
+            };
+            read_terrain(path, &opts)
+                .map_err(|source| ScenarioError::Terrain {
+                    origin: loaded.origin.clone(),
+                    source,
+                })?
+                .terrain
+        }
+    };
+    if let Some(p) = source {
+        spec.terrain.source = p.display().to_string();
+    }
+    World::new(spec, terrain).map_err(|source| ScenarioError::Invalid {
+        origin: loaded.origin.clone(),
+        source,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_builtin_parses_and_builds() {
+        for name in builtin_names() {
+            let l = load_spec(name).unwrap();
+            assert_eq!(l.spec.name, name);
+            build_world(&l, None).unwrap();
+        }
+    }
+
+    #[test]
+    fn show_round_trips() {
+        for name in builtin_names() {
+            let l = load_spec(name).unwrap();
+            let again = parse_spec(&to_toml(&l.spec), "round-trip").unwrap();
+            assert_eq!(again, l.spec);
+        }
+    }
+
+    #[test]
+    fn unknown_fields_are_rejected_with_their_name() {
+        let text = BUILTIN[4].1.replace("[goal]", "[goal]\naltitude = 3");
+        let e = parse_spec(&text, "x.toml").unwrap_err().to_string();
+        assert!(e.starts_with("x.toml:"), "{e}");
+        assert!(e.contains("altitude"), "{e}");
+    }
+
+    #[test]
+    fn bad_values_name_the_field() {
+        let text = BUILTIN[4].1.replacen("battery_wh = 2.0", "battery_wh = -2.0", 1);
+        let e = parse_spec(&text, "x.toml").unwrap_err().to_string();
+        assert!(e.contains("uavs[0].battery_wh"), "{e}");
+        assert!(e.contains("-2"), "{e}");
+    }
+
+    #[test]
+    fn unknown_scenario_lists_the_builtins() {
+        let e = load_spec("no-such-scenario").unwrap_err().to_string();
+        assert!(e.contains("paper-case1") && e.contains("no-such-scenario"), "{e}");
+    }
+}

@@ -1,0 +1,85 @@
+//! Cross-check against the SPSO reference code: every vector of
+//! `shared/data/spso/cost-vectors.json` (computed by SPSO's own `SphericalToCart` and
+//! `MyCost` in GNU Octave on its DEM) is decoded with the spherical encoding in SPSO's
+//! convention and costed with the `spso` preset; waypoints and each term must match to 1e-9
+//! relative, `Inf` where the reference says `Inf`. Skipped, saying so, when the files are
+//! absent (they live in the CI's `shared/` folder, not in the repository).
+
+use std::path::PathBuf;
+
+use swarmplan_core::cost::assess;
+use swarmplan_core::encoding::{build, EncodingKind};
+use swarmplan_io::scenario::{build_world, load_spec};
+
+fn shared_spso() -> PathBuf {
+    std::env::var_os("SWARMPLAN_SHARED").map_or_else(
+        || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared"),
+        PathBuf::from,
+    )
+    .join("data/spso")
+}
+
+fn num(v: &serde_json::Value) -> f64 {
+    let s = v.as_str().expect("numbers are strings in cost-vectors.json");
+    match s {
+        "Inf" => f64::INFINITY,
+        "-Inf" => f64::NEG_INFINITY,
+        _ => s.parse().expect("a number"),
+    }
+}
+
+fn nums(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array().expect("an array").iter().map(num).collect()
+}
+
+fn close(got: f64, want: f64, what: &str) {
+    if want.is_infinite() {
+        assert_eq!(got, want, "{what}: got {got}, want {want}");
+    } else {
+        let tol = 1e-9 * want.abs().max(1.0);
+        assert!((got - want).abs() <= tol, "{what}: got {got:.17}, want {want:.17}");
+    }
+}
+
+#[test]
+fn matches_spso_mycost_on_every_reference_vector() {
+    let dir = shared_spso();
+    let (tif, vectors) = (dir.join("ChrismasTerrain.tif"), dir.join("cost-vectors.json"));
+    if !tif.exists() || !vectors.exists() {
+        eprintln!("skipped: SPSO reference files not found in {} (set SWARMPLAN_SHARED)", dir.display());
+        return;
+    }
+    let data: Vec<serde_json::Value> =
+        serde_json::from_str(&std::fs::read_to_string(&vectors).unwrap()).unwrap();
+    assert_eq!(data.len(), 40);
+    let mut worlds = std::collections::HashMap::new();
+    let mut infinite = 0;
+    for (idx, v) in data.iter().enumerate() {
+        let case = v["case"].as_str().unwrap();
+        let world = worlds.entry(case.to_string()).or_insert_with(|| {
+            let loaded = load_spec(&format!("spso-{case}")).unwrap();
+            build_world(&loaded, Some(&tif)).unwrap()
+        });
+        let enc = build(EncodingKind::Spherical, world);
+        let x: Vec<f64> = [nums(&v["r"]), nums(&v["psi"]), nums(&v["phi"])].concat();
+        let plan = enc.decode(&x);
+        let w = &plan.uavs[0].waypoints;
+        for (k, ((xr, yr), zr)) in nums(&v["x"]).iter().zip(nums(&v["y"])).zip(nums(&v["z"])).enumerate() {
+            close(w[k + 1].x, *xr, &format!("vector {idx} node {k} x"));
+            close(w[k + 1].y, yr, &format!("vector {idx} node {k} y"));
+            close(w[k + 1].z, zr, &format!("vector {idx} node {k} z"));
+        }
+        let a = assess(world, &plan, false);
+        let t = a.per_uav[0].raw;
+        close(t.length, num(&v["J1_length"]), &format!("vector {idx} J1"));
+        close(t.threat, num(&v["J2_threat"]), &format!("vector {idx} J2"));
+        close(t.altitude, num(&v["J3_altitude"]), &format!("vector {idx} J3"));
+        close(t.smoothness, num(&v["J4_smoothness"]), &format!("vector {idx} J4"));
+        close(a.total, num(&v["cost"]), &format!("vector {idx} cost"));
+        if a.total.is_infinite() {
+            infinite += 1;
+        }
+    }
+    // Both kinds are present: the random vectors collide, the near-best ones do not.
+    assert!(infinite > 0 && infinite < data.len(), "{infinite} infinite");
+}
