@@ -10,7 +10,11 @@ use std::process::ExitCode;
 use clap::{Args, Parser, Subcommand};
 
 #[derive(Debug, Parser)]
-#[command(name = "swarmplan", version, about = "Cooperative path planning for UAV fleets (DLS-SMPSO and baselines)")]
+#[command(
+    name = "swarmplan",
+    version,
+    about = "Cooperative path planning for UAV fleets (DLS-SMPSO and baselines)"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -51,7 +55,9 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Scenario(ScenarioCommand::List) => commands::scenario::list(),
-        Command::Scenario(ScenarioCommand::Show { scenario }) => commands::scenario::show(&scenario),
+        Command::Scenario(ScenarioCommand::Show { scenario }) => {
+            commands::scenario::show(&scenario)
+        }
         Command::Evaluate(args) => commands::evaluate::run(&args),
     };
     match result {

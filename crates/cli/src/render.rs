@@ -13,7 +13,15 @@ pub fn assessment(world: &World, a: &Assessment) -> String {
     let _ = writeln!(
         s,
         "{:>4} {:>9} {:>8} {:>9} {:>9} {:>8} {:>10} {:>8} {:>10}",
-        "uav", "length m", "speed", "arrive s", "energy J", "battery", "clear m", "outage s", "cost"
+        "uav",
+        "length m",
+        "speed",
+        "arrive s",
+        "energy J",
+        "battery",
+        "clear m",
+        "outage s",
+        "cost"
     );
     for (i, u) in a.per_uav.iter().enumerate() {
         let _ = writeln!(
@@ -45,7 +53,14 @@ pub fn assessment(world: &World, a: &Assessment) -> String {
         let _ = writeln!(s, "\nfeasible: no ({} violations)", v.len());
         for x in v {
             let when = x.time.map(|t| format!(" t={t:.1}s")).unwrap_or_default();
-            let _ = writeln!(s, "  {:<10} uav {}{}: {}", x.kind.name(), x.uav, when, x.detail);
+            let _ = writeln!(
+                s,
+                "  {:<10} uav {}{}: {}",
+                x.kind.name(),
+                x.uav,
+                when,
+                x.detail
+            );
         }
     }
     s

@@ -137,7 +137,11 @@ impl ViolationSink {
         at: At,
         detail: impl FnOnce() -> String,
     ) {
-        let amount = if amount.is_finite() { amount.max(0.0) } else { 1e9 };
+        let amount = if amount.is_finite() {
+            amount.max(0.0)
+        } else {
+            1e9
+        };
         self.measure += 1.0 + amount;
         if let Some(list) = &mut self.list {
             list.push(Violation {

@@ -77,7 +77,11 @@ impl TimedPath {
             k += 1;
         }
         let seg = self.cum[k + 1] - self.cum[k];
-        let f = if seg > 0.0 { (s - self.cum[k]) / seg } else { 0.0 };
+        let f = if seg > 0.0 {
+            (s - self.cum[k]) / seg
+        } else {
+            0.0
+        };
         (self.abs[k].lerp(self.abs[k + 1], f), k)
     }
 
@@ -184,29 +188,45 @@ mod tests {
 
     #[test]
     fn time_is_clamped_so_every_speed_is_legal() {
-        // 1000 m and 3000 m paths: cruise-optimal T would make the long one too fast.
-        let t = common_arrival_time([(1000.0, 15.0, 5.0, 25.0), (3000.0, 15.0, 5.0, 25.0)].into_iter());
-        assert!(3000.0 / t <= 25.0 + 1e-9 && 1000.0 / t >= 5.0 - 1e-9);
-        assert!((t - 120.0).abs() < 1e-9);
+        // 1000 m and 4000 m paths: the cruise-optimal T = 226.7 s would make the short one
+        // fly at 4.4 m/s, so T is clamped to 200 s (5 m/s for it, 20 m/s for the long one).
+        let t =
+            common_arrival_time([(1000.0, 15.0, 5.0, 25.0), (4000.0, 15.0, 5.0, 25.0)].into_iter());
+        assert!(4000.0 / t <= 25.0 + 1e-9 && 1000.0 / t >= 5.0 - 1e-9);
+        assert!((t - 200.0).abs() < 1e-9);
     }
 
     #[test]
     fn impossible_spread_breaks_limits() {
-        let t = common_arrival_time([(100.0, 15.0, 5.0, 25.0), (10_000.0, 15.0, 5.0, 25.0)].into_iter());
+        let t = common_arrival_time(
+            [(100.0, 15.0, 5.0, 25.0), (10_000.0, 15.0, 5.0, 25.0)].into_iter(),
+        );
         assert!(100.0 / t < 5.0 || 10_000.0 / t > 25.0);
     }
 
     #[test]
     fn position_interpolates_by_arc_length() {
         let tp = TimedPath {
-            abs: vec![DVec3::ZERO, DVec3::new(10.0, 0.0, 0.0), DVec3::new(10.0, 10.0, 0.0)],
+            abs: vec![
+                DVec3::ZERO,
+                DVec3::new(10.0, 0.0, 0.0),
+                DVec3::new(10.0, 10.0, 0.0),
+            ],
             cum: vec![0.0, 10.0, 20.0],
             length: 20.0,
             speed: 2.0,
             arrival: 10.0,
         };
         assert!(tp.position_at_time(2.5).distance(DVec3::new(5.0, 0.0, 0.0)) < 1e-12);
-        assert!(tp.position_at_time(7.5).distance(DVec3::new(10.0, 5.0, 0.0)) < 1e-12);
-        assert!(tp.position_at_time(99.0).distance(DVec3::new(10.0, 10.0, 0.0)) < 1e-12);
+        assert!(
+            tp.position_at_time(7.5)
+                .distance(DVec3::new(10.0, 5.0, 0.0))
+                < 1e-12
+        );
+        assert!(
+            tp.position_at_time(99.0)
+                .distance(DVec3::new(10.0, 10.0, 0.0))
+                < 1e-12
+        );
     }
 }

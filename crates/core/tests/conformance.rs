@@ -6,6 +6,8 @@
 //! evaluation budget met exactly (and every evaluation counted), and no NaN ever kept as
 //! best. `measure` (ignored) prints the table the thresholds were chosen from.
 
+#![allow(clippy::unwrap_used)] // tests fail loudly by design
+
 use std::f64::consts::PI;
 use std::sync::atomic::{AtomicU64, Ordering};
 

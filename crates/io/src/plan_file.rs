@@ -84,7 +84,11 @@ pub fn parse_plan(text: &str, origin: &str, world: &World) -> Result<Plan, PlanF
     if file.uavs.len() != n {
         return Err(invalid(
             "uavs".into(),
-            format!("scenario `{}` has {n} UAVs, the plan has {}", world.spec.name, file.uavs.len()),
+            format!(
+                "scenario `{}` has {n} UAVs, the plan has {}",
+                world.spec.name,
+                file.uavs.len()
+            ),
         ));
     }
     let mut plan = Plan::default();
@@ -92,12 +96,18 @@ pub fn parse_plan(text: &str, origin: &str, world: &World) -> Result<Plan, PlanF
         if u.waypoints.len() < 2 {
             return Err(invalid(
                 format!("uavs[{i}].waypoints"),
-                format!("expected at least 2 waypoints (start and goal), got {}", u.waypoints.len()),
+                format!(
+                    "expected at least 2 waypoints (start and goal), got {}",
+                    u.waypoints.len()
+                ),
             ));
         }
         for (k, w) in u.waypoints.iter().enumerate() {
             if w.iter().any(|v| !v.is_finite()) {
-                return Err(invalid(format!("uavs[{i}].waypoints[{k}]"), format!("expected finite numbers, got {w:?}")));
+                return Err(invalid(
+                    format!("uavs[{i}].waypoints[{k}]"),
+                    format!("expected finite numbers, got {w:?}"),
+                ));
             }
         }
         let ends = [
@@ -153,7 +163,10 @@ pub fn plan_file(world: &World, plan: &Plan) -> PlanFile {
 pub fn assessment_json(a: &Assessment) -> serde_json::Value {
     let terms = a.term_totals();
     let mut term_map = serde_json::Map::new();
-    for (name, v) in swarmplan_core::cost::Terms::NAMES.iter().zip(terms.values()) {
+    for (name, v) in swarmplan_core::cost::Terms::NAMES
+        .iter()
+        .zip(terms.values())
+    {
         term_map.insert((*name).to_string(), json_number(v));
     }
     term_map.insert("penalty".into(), json_number(a.penalty));

@@ -16,10 +16,22 @@ use crate::dem::{read_terrain, DemError, DemFrame, DemOptions};
 
 /// Built-in scenarios: (name, TOML text).
 pub const BUILTIN: [(&str, &str); 5] = [
-    ("paper-case1", include_str!("../../../scenarios/paper-case1.toml")),
-    ("paper-case2", include_str!("../../../scenarios/paper-case2.toml")),
-    ("spso-case1", include_str!("../../../scenarios/spso-case1.toml")),
-    ("spso-case2", include_str!("../../../scenarios/spso-case2.toml")),
+    (
+        "paper-case1",
+        include_str!("../../../scenarios/paper-case1.toml"),
+    ),
+    (
+        "paper-case2",
+        include_str!("../../../scenarios/paper-case2.toml"),
+    ),
+    (
+        "spso-case1",
+        include_str!("../../../scenarios/spso-case1.toml"),
+    ),
+    (
+        "spso-case2",
+        include_str!("../../../scenarios/spso-case2.toml"),
+    ),
     ("tiny", include_str!("../../../scenarios/tiny.toml")),
 ];
 
@@ -35,10 +47,7 @@ pub enum ScenarioError {
     #[error("{origin}: {message}")]
     Parse { origin: String, message: String },
     #[error("{origin}: {source}")]
-    Invalid {
-        origin: String,
-        source: WorldError,
-    },
+    Invalid { origin: String, source: WorldError },
     #[error("{origin}: terrain.procedural: {message}")]
     Procedural { origin: String, message: String },
     #[error("{origin}: terrain: {source}")]
@@ -113,7 +122,10 @@ pub fn to_toml(spec: &ScenarioSpec) -> String {
 }
 
 /// Builds the world of `loaded`, with `terrain_override` replacing its terrain source.
-pub fn build_world(loaded: &LoadedSpec, terrain_override: Option<&Path>) -> Result<World, ScenarioError> {
+pub fn build_world(
+    loaded: &LoadedSpec,
+    terrain_override: Option<&Path>,
+) -> Result<World, ScenarioError> {
     let mut spec = loaded.spec.clone();
     let t = &spec.terrain;
     let source: Option<PathBuf> = match terrain_override {
@@ -180,7 +192,9 @@ mod tests {
 
     #[test]
     fn bad_values_name_the_field() {
-        let text = BUILTIN[4].1.replacen("battery_wh = 2.0", "battery_wh = -2.0", 1);
+        let text = BUILTIN[4]
+            .1
+            .replacen("battery_wh = 2.0", "battery_wh = -2.0", 1);
         let e = parse_spec(&text, "x.toml").unwrap_err().to_string();
         assert!(e.contains("uavs[0].battery_wh"), "{e}");
         assert!(e.contains("-2"), "{e}");
@@ -189,6 +203,9 @@ mod tests {
     #[test]
     fn unknown_scenario_lists_the_builtins() {
         let e = load_spec("no-such-scenario").unwrap_err().to_string();
-        assert!(e.contains("paper-case1") && e.contains("no-such-scenario"), "{e}");
+        assert!(
+            e.contains("paper-case1") && e.contains("no-such-scenario"),
+            "{e}"
+        );
     }
 }

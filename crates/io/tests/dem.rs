@@ -1,6 +1,8 @@
 //! DEM readers against files written here (tiff encoder, a hand-made tiled TIFF, ASCII grids)
 //! and, when the shared data folder is present, against SPSO's reference terrain.
 
+#![allow(clippy::unwrap_used)] // tests fail loudly by design
+
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
@@ -161,17 +163,20 @@ fn spso_reference_terrain() {
     let geo = read_terrain(&path, &DemOptions::default()).expect("georeferenced");
     assert_eq!(geo.file_cell_size(), Some((5.0, 5.0)));
     assert_eq!(geo.cell_metres, (5.0, 5.0));
-    let g = geo.georef.expect("GeoTIFF tags");
-    if g.crs.epsg().is_some() {
-        assert_eq!(g.crs, Crs::Projected(28348), "GDA94 / MGA zone 48");
-    }
+    let g = geo.georef.clone().expect("GeoTIFF tags");
+    // ProjectedCSTypeGeoKey is user-defined in this file; ProjectionGeoKey (UTM zone 48S)
+    // and the GDA94 datum give GDA94 / MGA zone 48.
+    assert_eq!(g.crs, Crs::Projected(28348), "GDA94 / MGA zone 48");
+    assert!(g.crs_inferred);
+    assert_eq!(g.citation.as_deref(), Some("GDA94 / MGA zone 48"));
+    // The file stores x as 566710.0000000009.
     let tp = g.tie_point.expect("tie point");
-    assert_eq!((tp.model[0], tp.model[1]), (566_710.0, 8_842_640.0));
-    assert_eq!(g.upper_left_corner, (566_710.0, 8_842_640.0));
-    assert_eq!(
-        geo.lower_left(),
-        Some((566_710.0, 8_842_640.0 - 879.0 * 5.0))
-    );
+    assert_eq!(tp.raster, [0.0, 0.0, 0.0]);
+    assert!(close(tp.model[0], 566_710.0, 1e-6) && close(tp.model[1], 8_842_640.0, 1e-6));
+    let (ulx, uly) = g.upper_left_corner;
+    assert!(close(ulx, 566_710.0, 1e-6) && close(uly, 8_842_640.0, 1e-6));
+    let (llx, lly) = geo.lower_left().expect("georef");
+    assert!(close(llx, 566_710.0, 1e-6) && close(lly, 8_842_640.0 - 879.0 * 5.0, 1e-6));
     assert!(geo.nodata.is_some_and(|v| v < -3e38), "{:?}", geo.nodata);
     // Same samples, rows flipped, 5 m cells.
     let tg = &geo.terrain;
@@ -229,9 +234,10 @@ fn float32_geotiff_round_trip() {
     assert_eq!(t.node(3, 2), 3.0);
     assert_eq!(t.height(5.0, 0.0), 21.0);
     assert_eq!(t.height(2.5, 20.0), 0.5);
-    let g = dem.georef.expect("georeferenced");
+    let g = dem.georef.clone().expect("georeferenced");
     assert_eq!(g.crs, Crs::Projected(28348));
     assert_eq!(g.crs.epsg(), Some(28348));
+    assert!(!g.crs_inferred);
     assert_eq!(g.upper_left_corner, (1000.0, 2000.0));
     assert_eq!(dem.lower_left(), Some((1000.0, 1970.0)));
     assert_eq!(g.south_west_node, (1002.5, 1975.0));
@@ -331,7 +337,7 @@ fn geographic_and_pixel_is_point_georeferencing() {
         Compression::Uncompressed,
     );
     let dem = read_terrain(&p, &DemOptions::default()).expect("reads");
-    let g = dem.georef.expect("georef");
+    let g = dem.georef.clone().expect("georef");
     assert_eq!(g.crs, Crs::Geographic(4326));
     assert!(g.pixel_is_point);
     // The tie point is the first pixel's centre, so the corner is half a cell further out.
@@ -562,7 +568,7 @@ fn ascii_grid_first_row_is_north() {
     assert_eq!(t.node(2, 0), 3.0); // filled from the edge neighbour above
     assert_eq!(t.height(0.0, 10.0), 1.0);
     assert_eq!(t.height(0.0, 5.0), 2.5);
-    let g = dem.georef.expect("asc has georeferencing");
+    let g = dem.georef.clone().expect("asc has georeferencing");
     assert_eq!(dem.lower_left(), Some((100.0, 200.0)));
     assert_eq!(g.upper_left_corner, (100.0, 220.0));
     assert_eq!(g.south_west_node, (105.0, 205.0));
@@ -586,9 +592,12 @@ fn ascii_grid_header_variants() {
     assert_eq!(dem.terrain.node(3, 1), 4.0);
     assert_eq!(dem.terrain.node(0, 0), 5.0);
     assert_eq!(dem.nodata_filled, 0);
-    // Recognised by content even without the extension.
+    // Recognised by content even without the extension, also behind a UTF-8 byte-order mark.
     let dem = read_asc(&dir, "grid.txt", text, &DemOptions::default()).expect("reads");
     assert_eq!(dem.format, DemFormat::EsriAscii);
+    let bom = format!("\u{feff}{text}");
+    let dem = read_asc(&dir, "bom.txt", &bom, &DemOptions::default()).expect("reads");
+    assert_eq!(dem.terrain.node(0, 0), 5.0);
 }
 
 #[test]
@@ -680,8 +689,16 @@ fn ascii_grid_errors_name_the_problem() {
     assert!(matches!(e, DemError::Terrain { .. }), "{msg}");
     let (e, _) = err("header-only.asc", "ncols 2\nnrows 2\n");
     assert!(matches!(e, DemError::MissingField { line: 3, .. }), "{e}");
-    let (e, _) = err("binary.asc", "ncols 2\n\u{0}\u{ff}");
-    assert!(matches!(e, DemError::BadHeader { .. }), "{e}");
+    let (e, _) = err("control.asc", "ncols 2\n\u{0}\u{ff}");
+    assert!(matches!(e, DemError::BadHeader { line: 2, .. }), "{e}");
+    let p = dir.path("binary.asc");
+    std::fs::write(&p, b"ncols 2\n\xff\xfe").expect("write");
+    let e = read_terrain(&p, &opts).expect_err("not UTF-8");
+    assert!(matches!(e, DemError::Corrupt { .. }), "{e}");
+    assert!(
+        e.to_string().contains("binary.asc") && e.to_string().contains("byte 8"),
+        "{e}"
+    );
 }
 
 // ---------------------------------------------------------------- bad files never panic
@@ -717,14 +734,26 @@ fn truncated_and_garbage_files_are_errors() {
     }
     .bytes(|c, r| (c + r) as f32);
     let asc = b"ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3\n4 5 6\n".to_vec();
+    // A truncated TIFF is an error unless only bytes the decoder never reads were cut (the
+    // padding at the end of the last tile): then the terrain must be the full one.
     let cut = dir.path("cut.tif");
-    for file in [&good, &tiled] {
+    // Last tile: 16 x 16 samples of which the decoder needs 1 row + 4 (columns 16..20).
+    let unread_tail = (16 * 16 - (16 + 4)) * 4;
+    for (file, unread) in [(&good, 0), (&tiled, unread_tail)] {
+        std::fs::write(&cut, file).expect("write");
+        let full = read_terrain(&cut, &DemOptions::default()).expect("full file reads");
+        let mut errors = 0;
         for len in 0..file.len() {
             std::fs::write(&cut, &file[..len]).expect("write");
-            let e = read_terrain(&cut, &DemOptions::default())
-                .expect_err("a truncated TIFF is an error");
-            assert!(e.to_string().contains("cut.tif"), "{e}");
+            match read_terrain(&cut, &DemOptions::default()) {
+                Err(e) => {
+                    assert!(e.to_string().contains("cut.tif"), "{e}");
+                    errors += 1;
+                }
+                Ok(dem) => assert_eq!(dem.terrain.heights(), full.terrain.heights(), "{len}"),
+            }
         }
+        assert_eq!(errors, file.len() - unread);
     }
     let cut_asc = dir.path("cut.asc");
     for len in 0..asc.len() - 1 {

@@ -5,6 +5,8 @@
 //! relative, `Inf` where the reference says `Inf`. Skipped, saying so, when the files are
 //! absent (they live in the CI's `shared/` folder, not in the repository).
 
+#![allow(clippy::unwrap_used)] // tests fail loudly by design
+
 use std::path::PathBuf;
 
 use swarmplan_core::cost::assess;
@@ -12,15 +14,18 @@ use swarmplan_core::encoding::{build, EncodingKind};
 use swarmplan_io::scenario::{build_world, load_spec};
 
 fn shared_spso() -> PathBuf {
-    std::env::var_os("SWARMPLAN_SHARED").map_or_else(
-        || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared"),
-        PathBuf::from,
-    )
-    .join("data/spso")
+    std::env::var_os("SWARMPLAN_SHARED")
+        .map_or_else(
+            || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared"),
+            PathBuf::from,
+        )
+        .join("data/spso")
 }
 
 fn num(v: &serde_json::Value) -> f64 {
-    let s = v.as_str().expect("numbers are strings in cost-vectors.json");
+    let s = v
+        .as_str()
+        .expect("numbers are strings in cost-vectors.json");
     match s {
         "Inf" => f64::INFINITY,
         "-Inf" => f64::NEG_INFINITY,
@@ -37,16 +42,25 @@ fn close(got: f64, want: f64, what: &str) {
         assert_eq!(got, want, "{what}: got {got}, want {want}");
     } else {
         let tol = 1e-9 * want.abs().max(1.0);
-        assert!((got - want).abs() <= tol, "{what}: got {got:.17}, want {want:.17}");
+        assert!(
+            (got - want).abs() <= tol,
+            "{what}: got {got:.17}, want {want:.17}"
+        );
     }
 }
 
 #[test]
 fn matches_spso_mycost_on_every_reference_vector() {
     let dir = shared_spso();
-    let (tif, vectors) = (dir.join("ChrismasTerrain.tif"), dir.join("cost-vectors.json"));
+    let (tif, vectors) = (
+        dir.join("ChrismasTerrain.tif"),
+        dir.join("cost-vectors.json"),
+    );
     if !tif.exists() || !vectors.exists() {
-        eprintln!("skipped: SPSO reference files not found in {} (set SWARMPLAN_SHARED)", dir.display());
+        eprintln!(
+            "skipped: SPSO reference files not found in {} (set SWARMPLAN_SHARED)",
+            dir.display()
+        );
         return;
     }
     let data: Vec<serde_json::Value> =
@@ -64,7 +78,12 @@ fn matches_spso_mycost_on_every_reference_vector() {
         let x: Vec<f64> = [nums(&v["r"]), nums(&v["psi"]), nums(&v["phi"])].concat();
         let plan = enc.decode(&x);
         let w = &plan.uavs[0].waypoints;
-        for (k, ((xr, yr), zr)) in nums(&v["x"]).iter().zip(nums(&v["y"])).zip(nums(&v["z"])).enumerate() {
+        for (k, ((xr, yr), zr)) in nums(&v["x"])
+            .iter()
+            .zip(nums(&v["y"]))
+            .zip(nums(&v["z"]))
+            .enumerate()
+        {
             close(w[k + 1].x, *xr, &format!("vector {idx} node {k} x"));
             close(w[k + 1].y, yr, &format!("vector {idx} node {k} y"));
             close(w[k + 1].z, zr, &format!("vector {idx} node {k} z"));
@@ -73,8 +92,16 @@ fn matches_spso_mycost_on_every_reference_vector() {
         let t = a.per_uav[0].raw;
         close(t.length, num(&v["J1_length"]), &format!("vector {idx} J1"));
         close(t.threat, num(&v["J2_threat"]), &format!("vector {idx} J2"));
-        close(t.altitude, num(&v["J3_altitude"]), &format!("vector {idx} J3"));
-        close(t.smoothness, num(&v["J4_smoothness"]), &format!("vector {idx} J4"));
+        close(
+            t.altitude,
+            num(&v["J3_altitude"]),
+            &format!("vector {idx} J3"),
+        );
+        close(
+            t.smoothness,
+            num(&v["J4_smoothness"]),
+            &format!("vector {idx} J4"),
+        );
         close(a.total, num(&v["cost"]), &format!("vector {idx} cost"));
         if a.total.is_infinite() {
             infinite += 1;

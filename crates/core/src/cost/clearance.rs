@@ -2,8 +2,8 @@
 //!
 //! A segment flies straight between its waypoints' absolute altitudes; it must stay at least
 //! `map.clearance` above the ground, sampled every `map.clearance_step` metres. The terrain's
-//! block maxima accept most segments without sampling; the exact minimum clearance is only
-//! computed when a report asks for it.
+//! max pyramid accepts most segments after a few look-ups; the samples and the exact minimum
+//! clearance are only computed when a segment fails or a report asks for them.
 
 use crate::feasibility::{At, ViolationKind, ViolationSink};
 use crate::plan::Path;
@@ -39,13 +39,18 @@ pub fn check_clearance(
                     position: Some(p[k]),
                     ..At::default()
                 },
-                || format!("waypoint {k} at ({:.1}, {:.1}) is outside the map box", w.x, w.y),
+                || {
+                    format!(
+                        "waypoint {k} at ({:.1}, {:.1}) is outside the map box",
+                        w.x, w.y
+                    )
+                },
             );
         }
     }
     for s in 0..p.len().saturating_sub(1) {
         let (a, b) = (p[s], p[s + 1]);
-        if !exact && a.z.min(b.z) - map.clearance >= terrain.max_in_rect(a.x, a.y, b.x, b.y) {
+        if !exact && terrain.segment_clears(a, b, map.clearance, map.clearance_step) {
             continue;
         }
         let n = ((a.truncate().distance(b.truncate()) / map.clearance_step).ceil() as usize).max(1);

@@ -22,6 +22,7 @@ use crate::world::World;
 pub struct CommScratch {
     hints: Vec<usize>,
     pos: Vec<DVec3>,
+    /// Interference range factors (1 = no interference) of UAVs and ground nodes.
     db: Vec<f64>,
     ground_db: Vec<f64>,
     reached: Vec<bool>,
@@ -59,13 +60,15 @@ pub fn communication(
     s.hints.clear();
     s.hints.resize(n, 0);
     s.pos.resize(n, DVec3::ZERO);
-    s.db.resize(n, 0.0);
+    s.db.clear();
+    s.db.resize(n, 1.0);
     s.reached.resize(n, false);
     s.run.clear();
     s.run.resize(n, 0);
     s.run_start.resize(n, (0.0, DVec3::ZERO));
     let ground = &world.ground_nodes;
-    s.ground_db.resize(ground.len(), 0.0);
+    s.ground_db.clear();
+    s.ground_db.resize(ground.len(), 1.0);
     let has_interference = !ch.interference().is_empty();
     let max_run = (spec.max_outage_s / dt + 1e-9).floor() as usize;
     for k in 0..=steps {
@@ -73,51 +76,21 @@ pub fn communication(
         plan.sample(t, &mut s.hints, &mut s.pos);
         if has_interference {
             for (d, p) in s.db.iter_mut().zip(&s.pos) {
-                *d = ch.interference_db(t, p.x, p.y);
+                *d = ch.interference_factor(t, p.x, p.y);
             }
             for (d, g) in s.ground_db.iter_mut().zip(ground) {
-                *d = ch.interference_db(t, g.position.x, g.position.y);
+                *d = ch.interference_factor(t, g.position.x, g.position.y);
             }
         }
-        let link = |a: DVec3, da: f64, b: DVec3, db: f64| {
-            a.distance(b) <= ch.link_range(k, da, db) && ch.line_of_sight(&world.terrain, a, b)
-        };
-        s.reached.iter_mut().for_each(|r| *r = false);
-        match spec.requirement {
-            CommRequirement::Relay => {
-                s.queue.clear();
-                for (g, gdb) in ground.iter().zip(&s.ground_db) {
-                    for u in 0..n {
-                        if !s.reached[u] && link(g.position, *gdb, s.pos[u], s.db[u]) {
-                            s.reached[u] = true;
-                            s.queue.push(u);
-                        }
-                    }
-                }
-                let mut head = 0;
-                while head < s.queue.len() && s.queue.len() < n {
-                    let a = s.queue[head];
-                    head += 1;
-                    for u in 0..n {
-                        if !s.reached[u] && link(s.pos[a], s.db[a], s.pos[u], s.db[u]) {
-                            s.reached[u] = true;
-                            s.queue.push(u);
-                        }
-                    }
-                }
-            }
-            CommRequirement::Neighbour => {
-                for u in 0..n {
-                    let to_ground = ground
-                        .iter()
-                        .zip(&s.ground_db)
-                        .any(|(g, gdb)| link(g.position, *gdb, s.pos[u], s.db[u]));
-                    s.reached[u] = to_ground
-                        || (0..n).any(|v| v != u && link(s.pos[u], s.db[u], s.pos[v], s.db[v]));
-                }
-            }
-            CommRequirement::None => unreachable!("returned above"),
-        }
+        connect(
+            world,
+            k,
+            &s.pos,
+            &s.db,
+            &s.ground_db,
+            &mut s.reached,
+            &mut s.queue,
+        );
         for u in 0..n {
             if s.reached[u] {
                 close_run(world, u, dt, max_run, s, sink);
@@ -146,6 +119,106 @@ pub fn communication(
     for u in 0..n {
         close_run(world, u, dt, max_run, s, sink);
     }
+}
+
+/// How a UAV stands at one instant.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Contact {
+    /// Linked to a ground node directly.
+    Direct,
+    /// Connected through other UAVs (relay mode) or to a neighbour UAV (neighbour mode).
+    Relayed,
+    /// Neither.
+    Out,
+}
+
+/// Who is in contact at communication step `k` with UAVs at `pos` (absolute altitudes).
+/// `db` and `ground_db` are the interference range factors of each UAV and ground node;
+/// `reached[u]` is set for UAVs in contact; `queue` lists them in the order found, ground
+/// links first. Returns nothing else so that the hot sweep does not allocate.
+pub fn connect(
+    world: &World,
+    k: usize,
+    pos: &[DVec3],
+    db: &[f64],
+    ground_db: &[f64],
+    reached: &mut [bool],
+    queue: &mut Vec<usize>,
+) -> usize {
+    let ch = &world.channel;
+    let ground = &world.ground_nodes;
+    let n = pos.len();
+    let link = |a: DVec3, da: f64, b: DVec3, dbb: f64| {
+        a.distance(b) <= ch.link_range(k, da, dbb) && ch.line_of_sight(&world.terrain, a, b)
+    };
+    reached.iter_mut().for_each(|r| *r = false);
+    queue.clear();
+    for (g, gdb) in ground.iter().zip(ground_db) {
+        for u in 0..n {
+            let up = !reached[u]
+                && g.position.distance(pos[u]) <= ch.link_range(k, *gdb, db[u])
+                && g.horizon.as_ref().is_none_or(|h| h.visible(pos[u]));
+            if up {
+                reached[u] = true;
+                queue.push(u);
+            }
+        }
+    }
+    let direct = queue.len();
+    match world.spec.communication.requirement {
+        CommRequirement::Relay => {
+            let mut head = 0;
+            while head < queue.len() && queue.len() < n {
+                let a = queue[head];
+                head += 1;
+                for u in 0..n {
+                    if !reached[u] && link(pos[a], db[a], pos[u], db[u]) {
+                        reached[u] = true;
+                        queue.push(u);
+                    }
+                }
+            }
+        }
+        CommRequirement::Neighbour => {
+            for u in 0..n {
+                if !reached[u] && (0..n).any(|v| v != u && link(pos[u], db[u], pos[v], db[v])) {
+                    reached[u] = true;
+                    queue.push(u);
+                }
+            }
+        }
+        CommRequirement::None => {}
+    }
+    direct
+}
+
+/// Each UAV's contact status at time `t` for UAVs at `pos` (allocating; for reports,
+/// figures and tests).
+#[must_use]
+pub fn contact_at(world: &World, t: f64, pos: &[DVec3]) -> Vec<Contact> {
+    let ch = &world.channel;
+    let k = (t / ch.step()).round() as usize;
+    let db: Vec<f64> = pos
+        .iter()
+        .map(|p| ch.interference_factor(t, p.x, p.y))
+        .collect();
+    let gdb: Vec<f64> = world
+        .ground_nodes
+        .iter()
+        .map(|g| ch.interference_factor(t, g.position.x, g.position.y))
+        .collect();
+    let mut reached = vec![false; pos.len()];
+    let mut queue = Vec::new();
+    let direct = connect(world, k, pos, &db, &gdb, &mut reached, &mut queue);
+    let mut out = vec![Contact::Out; pos.len()];
+    for (i, u) in queue.iter().enumerate() {
+        out[*u] = if i < direct {
+            Contact::Direct
+        } else {
+            Contact::Relayed
+        };
+    }
+    out
 }
 
 /// Ends UAV u's current outage run, reporting it if it was too long.

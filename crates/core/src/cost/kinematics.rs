@@ -36,7 +36,12 @@ pub fn wrap_angle(a: f64) -> f64 {
 }
 
 /// Computes the sums for UAV `uav` and reports turn and climb violations.
-pub fn kinematics(world: &World, uav: usize, tp: &TimedPath, sink: &mut ViolationSink) -> Kinematics {
+pub fn kinematics(
+    world: &World,
+    uav: usize,
+    tp: &TimedPath,
+    sink: &mut ViolationSink,
+) -> Kinematics {
     let spec = &world.spec.uavs[uav];
     let max_turn = spec.max_turn_deg.to_radians();
     let max_climb = spec.max_climb_deg.to_radians();

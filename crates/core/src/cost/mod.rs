@@ -229,8 +229,21 @@ pub fn assess_into(
     scratch.comm_out.resize(n, comm::CommOutcome::default());
     scratch.prox_out.resize(n, 0.0);
     if !spso_preset {
-        comm::communication(world, &scratch.timed, &mut scratch.comm, sink, &mut scratch.comm_out);
-        proximity::proximity(world, plan, &scratch.timed, &mut scratch.prox, sink, &mut scratch.prox_out);
+        comm::communication(
+            world,
+            &scratch.timed,
+            &mut scratch.comm,
+            sink,
+            &mut scratch.comm_out,
+        );
+        proximity::proximity(
+            world,
+            plan,
+            &scratch.timed,
+            &mut scratch.prox,
+            sink,
+            &mut scratch.prox_out,
+        );
     }
     let mut terms_cost = 0.0;
     for (u, path) in plan.uavs.iter().enumerate() {

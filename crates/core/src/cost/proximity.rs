@@ -23,6 +23,7 @@ pub struct ProximityScratch {
     hints: Vec<usize>,
     pos: Vec<DVec3>,
     in_zone: Vec<bool>,
+    zones: Vec<(f64, f64)>,
     /// Per pair (i < j): (distance minimum, time, place) of the current close episode.
     episode: Vec<Option<(f64, f64, DVec3)>>,
 }
@@ -44,7 +45,8 @@ pub fn proximity(
         let size = world.spec.uavs[u].size;
         for w in &path.waypoints {
             for t in &world.spec.threats {
-                let d = ((w.x - t.x).hypot(w.y - t.y) - t.r - size).max(0.0);
+                let (dx, dy) = (w.x - t.x, w.y - t.y);
+                let d = ((dx * dx + dy * dy).sqrt() - t.r - size).max(0.0);
                 out[u] += 1.0 / (d * d + eps);
             }
         }
@@ -62,14 +64,23 @@ pub fn proximity(
     s.episode.clear();
     s.episode.resize(n * (n - 1) / 2, None);
     let zone2 = timing.zone_radius * timing.zone_radius;
-    let goal = world.goal;
+    s.zones.clear();
+    s.zones.push((world.goal.x, world.goal.y));
+    for u in &world.spec.uavs {
+        if !s.zones.contains(&(u.start[0], u.start[1])) {
+            s.zones.push((u.start[0], u.start[1]));
+        }
+    }
     let sep = timing.separation;
+    let sep2 = sep * sep;
     for k in 0..=steps {
         let t = k as f64 * dt;
         timed.sample(t, &mut s.hints, &mut s.pos);
         for (z, p) in s.in_zone.iter_mut().zip(&s.pos) {
-            let near = |c: [f64; 3]| (p.x - c[0]).powi(2) + (p.y - c[1]).powi(2) <= zone2;
-            *z = near([goal.x, goal.y, 0.0]) || world.spec.uavs.iter().any(|u| near(u.start));
+            *z = s
+                .zones
+                .iter()
+                .any(|c| (p.x - c.0) * (p.x - c.0) + (p.y - c.1) * (p.y - c.1) <= zone2);
         }
         let mut pair = 0;
         for i in 0..n {
@@ -77,13 +88,14 @@ pub fn proximity(
                 let idx = pair;
                 pair += 1;
                 let exempt = s.in_zone[i] || s.in_zone[j];
-                let d = s.pos[i].distance(s.pos[j]);
+                let d2 = s.pos[i].distance_squared(s.pos[j]);
                 if !exempt {
-                    let share = 0.5 * dt / (d * d + eps);
+                    let share = 0.5 * dt / (d2 + eps);
                     out[i] += share;
                     out[j] += share;
                 }
-                if !exempt && d < sep {
+                if !exempt && d2 < sep2 {
+                    let d = d2.sqrt();
                     let mid = s.pos[i].lerp(s.pos[j], 0.5);
                     let e = s.episode[idx].get_or_insert((d, t, mid));
                     if d < e.0 {

@@ -173,8 +173,12 @@ pub fn smoothness_term(path: &Path, abs: &[DVec3]) -> f64 {
             j += 1;
             s2 = proj(j);
         }
-        let climb1 = (abs[i + 1].z - abs[i].z).atan2(s1.0.hypot(s1.1)).to_degrees();
-        let climb2 = (abs[i + 2].z - abs[i + 1].z).atan2(s2.0.hypot(s2.1)).to_degrees();
+        let climb1 = (abs[i + 1].z - abs[i].z)
+            .atan2(s1.0.hypot(s1.1))
+            .to_degrees();
+        let climb2 = (abs[i + 2].z - abs[i + 1].z)
+            .atan2(s2.0.hypot(s2.1))
+            .to_degrees();
         let cross = (s1.0 * s2.1 - s1.1 * s2.0).abs();
         let dot = s1.0 * s2.0 + s1.1 * s2.1;
         let turn = cross.atan2(dot).to_degrees();

@@ -72,7 +72,9 @@ impl FromStr for EncodingKind {
         Self::ALL
             .into_iter()
             .find(|k| k.name() == s)
-            .ok_or_else(|| format!("unknown encoding `{s}`; expected one of spherical, cartesian, angle"))
+            .ok_or_else(|| {
+                format!("unknown encoding `{s}`; expected one of spherical, cartesian, angle")
+            })
     }
 }
 

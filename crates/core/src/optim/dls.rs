@@ -271,10 +271,9 @@ impl DlsSmpso {
 
     /// Exemplar mode: rebuilds the exemplar of particle i from its (new) pbest.
     fn rebuild_exemplar(&mut self, i: usize, ev: &mut Evaluator<'_>, rng: &mut Rng) {
-        let s = &mut self.swarm;
-        let dim = s.dim;
-        let pbest = row(&s.pbest, i, dim);
-        let guide_index = if pbest == s.gbest.x.as_slice() {
+        let dim = self.swarm.dim;
+        let is_gbest = row(&self.swarm.pbest, i, dim) == self.swarm.gbest.x.as_slice();
+        let guide_index = if is_gbest {
             self.best_neighbour(i)
         } else {
             None

@@ -146,9 +146,18 @@ impl Swarm {
             pbest: vec![0.0; n * dim],
             pbest_eval: vec![Evaluation::worst(); n],
             gbest: BestSoFar::new(dim),
+            // abs and the NaN guard only matter for unvalidated parameters or a zero-width
+            // bound with an infinite clamp; `f64::clamp` would panic on them.
             vmax: bounds
                 .iter()
-                .map(|b| params.velocity_clamp * b.width())
+                .map(|b| {
+                    let m = (params.velocity_clamp * b.width()).abs();
+                    if m.is_nan() {
+                        0.0
+                    } else {
+                        m
+                    }
+                })
                 .collect(),
             w: params.inertia,
         }

@@ -15,14 +15,18 @@ use crate::rng::Rng;
 pub const DEFAULT_ITERATIONS: usize = 200;
 
 /// When to stop. Either limit may be absent; with both absent the run does
-/// [`DEFAULT_ITERATIONS`] iterations.
+/// [`DEFAULT_ITERATIONS`] iterations. In a file, a missing field means "no such limit"
+/// (so `evaluations = 10000` alone is a pure evaluation budget, for comparisons at equal
+/// evaluations), and an empty table means the default.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+#[serde(deny_unknown_fields)]
 pub struct Budget {
     /// Maximum number of steps after initialisation (200).
+    #[serde(default)]
     pub iterations: Option<usize>,
     /// Maximum number of evaluations, initialisation included (none). Never exceeded: the
     /// step that reaches it is cut short.
+    #[serde(default)]
     pub evaluations: Option<u64>,
 }
 
@@ -205,5 +209,57 @@ mod tests {
         };
         assert_eq!(both.planned_iterations(50), 100);
         assert_eq!(Budget::evaluations(3).planned_iterations(50), 1);
+    }
+
+    /// Evaluates one fixed point at init and nothing afterwards.
+    struct Idle;
+
+    impl Optimizer for Idle {
+        fn evaluations_per_iteration(&self) -> u64 {
+            1
+        }
+        fn init(&mut self, ev: &mut Evaluator<'_>, _: &mut Rng, _: usize) {
+            let _ = ev.evaluate(&[0.0]);
+        }
+        fn step(&mut self, _: &mut Evaluator<'_>, _: &mut Rng) {}
+        fn best(&self) -> (&[f64], Evaluation) {
+            (&[0.0], Evaluation::new(0.0, 0.0))
+        }
+    }
+
+    struct Zero(Vec<crate::problem::Bound>);
+
+    impl Problem for Zero {
+        fn bounds(&self) -> &[crate::problem::Bound] {
+            &self.0
+        }
+        fn evaluate(&self, _: &[f64]) -> Evaluation {
+            Evaluation::new(0.0, 0.0)
+        }
+    }
+
+    #[test]
+    fn a_step_without_evaluations_cannot_loop_forever() {
+        let p = Zero(vec![crate::problem::Bound::new(-1.0, 1.0)]);
+        let mut rng = crate::rng::rng_from_seed(0);
+        let mut seen = Vec::new();
+        let out = solve(&p, &mut Idle, Budget::evaluations(10), &mut rng, &mut |r| {
+            seen.push(r.iteration);
+        });
+        assert_eq!(out.termination, Termination::Stalled);
+        assert_eq!((out.iterations, out.evaluations), (1, 1));
+        assert_eq!(seen, vec![0, 1]);
+        let out = solve(&p, &mut Idle, Budget::iterations(4), &mut rng, &mut |_| {});
+        assert_eq!(out.termination, Termination::MaxIterations);
+        assert_eq!(out.trace.len(), 5);
+    }
+
+    #[test]
+    fn a_missing_limit_in_a_file_means_no_such_limit() {
+        let b: Budget = serde_json::from_str(r#"{"evaluations": 10000}"#).expect("parses");
+        assert_eq!(b, Budget::evaluations(10_000));
+        let b: Budget = serde_json::from_str("{}").expect("parses");
+        assert_eq!(b.max_iterations(), Some(DEFAULT_ITERATIONS));
+        assert!(serde_json::from_str::<Budget>(r#"{"iters": 3}"#).is_err());
     }
 }

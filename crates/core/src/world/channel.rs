@@ -27,6 +27,8 @@ pub struct Channel {
     /// X(t_k) in dB (kept for figures and reports).
     shadowing_db: Vec<f64>,
     interference: Vec<InterferenceSpec>,
+    /// 10^(-loss/20) of each window.
+    interference_factors: Vec<f64>,
     line_of_sight: bool,
     los_step: f64,
 }
@@ -57,6 +59,11 @@ impl Channel {
             range_at_step,
             shadowing_db,
             interference: spec.interference.clone(),
+            interference_factors: spec
+                .interference
+                .iter()
+                .map(|w| loss_factor(w.loss_db))
+                .collect(),
             line_of_sight: spec.line_of_sight,
             los_step: spec.line_of_sight_step,
         }
@@ -87,6 +94,22 @@ impl Channel {
         self.range_at_step[k.min(self.range_at_step.len() - 1)]
     }
 
+    /// Range factor 10^(-I/20) of the interference at time t for a node at (x, y) (1 when
+    /// no window applies). Windows add their losses, so their factors multiply.
+    #[must_use]
+    pub fn interference_factor(&self, t: f64, x: f64, y: f64) -> f64 {
+        let mut f = 1.0;
+        for (w, wf) in self.interference.iter().zip(&self.interference_factors) {
+            if t >= w.time[0] && t <= w.time[1] {
+                let (dx, dy) = (x - w.center[0], y - w.center[1]);
+                if dx * dx + dy * dy <= w.radius * w.radius {
+                    f *= wf;
+                }
+            }
+        }
+        f
+    }
+
     /// Extra loss in dB at time t for a node at (x, y).
     #[must_use]
     pub fn interference_db(&self, t: f64, x: f64, y: f64) -> f64 {
@@ -102,39 +125,19 @@ impl Channel {
         db
     }
 
-    /// Range of a link at step k whose ends suffer `db_a` and `db_b` of interference: the
-    /// link takes the worse end's loss (the weaker receiver decides).
+    /// Range of a link at step k whose ends have interference factors `fa` and `fb` (see
+    /// [`Self::interference_factor`]): the link takes the worse end's loss.
     #[must_use]
-    pub fn link_range(&self, k: usize, db_a: f64, db_b: f64) -> f64 {
-        let extra = db_a.max(db_b);
-        if extra == 0.0 {
-            self.base_range(k)
-        } else {
-            self.base_range(k) * loss_factor(extra)
-        }
+    pub fn link_range(&self, k: usize, fa: f64, fb: f64) -> f64 {
+        self.base_range(k) * fa.min(fb)
     }
 
-    /// Whether the straight line a-b (absolute altitudes) clears the terrain.
-    ///
-    /// Recursive bisection: a piece whose lower end is above every block of its bounding box
-    /// is clear; otherwise its midpoint is tested and both halves recurse, down to pieces
-    /// shorter than the line-of-sight step. Links between aircraft are usually accepted at
-    /// the first test; links to ground antennas only refine near the ground.
+    /// Whether the straight line a-b (absolute altitudes) clears the terrain, resolved to
+    /// the line-of-sight step (see [`Terrain::segment_clears`]).
     #[must_use]
     pub fn line_of_sight(&self, terrain: &Terrain, a: DVec3, b: DVec3) -> bool {
-        !self.line_of_sight || clear(terrain, a, b, self.los_step)
+        !self.line_of_sight || terrain.segment_clears(a, b, 0.0, self.los_step)
     }
-}
-
-fn clear(terrain: &Terrain, a: DVec3, b: DVec3, step: f64) -> bool {
-    if a.z.min(b.z) > terrain.max_in_rect(a.x, a.y, b.x, b.y) {
-        return true;
-    }
-    if (b - a).truncate().length() <= step {
-        return true;
-    }
-    let m = a.lerp(b, 0.5);
-    m.z > terrain.height(m.x, m.y) && clear(terrain, a, m, step) && clear(terrain, m, b, step)
 }
 
 /// Range factor of a loss of `db` decibels.
@@ -161,7 +164,10 @@ mod tests {
         assert_eq!(a.range_at_step[..100], b.range_at_step[..100]);
         let mut s = spec();
         s.seed += 1;
-        assert_ne!(a.range_at_step[..100], Channel::new(&s).range_at_step[..100]);
+        assert_ne!(
+            a.range_at_step[..100],
+            Channel::new(&s).range_at_step[..100]
+        );
     }
 
     #[test]
@@ -169,7 +175,13 @@ mod tests {
         let c = Channel::new(&spec());
         let n = c.shadowing_db.len() as f64;
         let mean = c.shadowing_db.iter().sum::<f64>() / n;
-        let sd = (c.shadowing_db.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / n).sqrt();
+        let sd = (c
+            .shadowing_db
+            .iter()
+            .map(|x| (x - mean).powi(2))
+            .sum::<f64>()
+            / n)
+            .sqrt();
         // 3600 s with a 10 s correlation time: about 180 independent samples.
         assert!((sd - 4.0).abs() < 1.2, "sd = {sd}");
         assert!(mean.abs() < 1.5, "mean = {mean}");
@@ -189,8 +201,10 @@ mod tests {
         assert_eq!(c.interference_db(15.0, 10.0, 10.0), 20.0);
         assert_eq!(c.interference_db(25.0, 10.0, 10.0), 0.0);
         assert_eq!(c.interference_db(15.0, 100.0, 0.0), 0.0);
-        assert!((c.link_range(15, 20.0, 0.0) - 50.0).abs() < 1e-9);
-        assert!((c.link_range(15, 0.0, 0.0) - 500.0).abs() < 1e-9);
+        let inside = c.interference_factor(15.0, 10.0, 10.0);
+        assert!((inside - 0.1).abs() < 1e-12);
+        assert!((c.link_range(15, inside, 1.0) - 50.0).abs() < 1e-9);
+        assert!((c.link_range(15, 1.0, 1.0) - 500.0).abs() < 1e-9);
     }
 
     #[test]
@@ -200,10 +214,25 @@ mod tests {
         let h: Vec<f64> = (0..11)
             .flat_map(|_| (0..nx).map(|i| if (45..=55).contains(&i) { 300.0 } else { 0.0 }))
             .collect();
-        let t = Terrain::new(nx, 11, (0.0, 0.0), (1.0, 1.0), h, super::super::terrain::Sampling::Bilinear)
-            .unwrap();
+        let t = Terrain::new(
+            nx,
+            11,
+            (0.0, 0.0),
+            (1.0, 1.0),
+            h,
+            super::super::terrain::Sampling::Bilinear,
+        )
+        .unwrap();
         let c = Channel::new(&spec());
-        assert!(!c.line_of_sight(&t, DVec3::new(0.0, 5.0, 100.0), DVec3::new(100.0, 5.0, 100.0)));
-        assert!(c.line_of_sight(&t, DVec3::new(0.0, 5.0, 400.0), DVec3::new(100.0, 5.0, 400.0)));
+        assert!(!c.line_of_sight(
+            &t,
+            DVec3::new(0.0, 5.0, 100.0),
+            DVec3::new(100.0, 5.0, 100.0)
+        ));
+        assert!(c.line_of_sight(
+            &t,
+            DVec3::new(0.0, 5.0, 400.0),
+            DVec3::new(100.0, 5.0, 400.0)
+        ));
     }
 }

@@ -6,6 +6,7 @@
 
 pub mod channel;
 pub mod energy;
+pub mod horizon;
 pub mod procedural;
 pub mod spec;
 pub mod terrain;
@@ -22,11 +23,13 @@ pub use threat::Threat;
 pub use validate::SpecError;
 
 /// A ground radio node (ground control station, UGV0, extra relays), absolute position.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct GroundNode {
     pub name: String,
     /// Antenna position, absolute altitude.
     pub position: DVec3,
+    /// Line-of-sight table of the antenna (built with the world).
+    pub horizon: Option<horizon::Horizon>,
 }
 
 #[derive(Debug, Error)]
@@ -88,26 +91,44 @@ impl World {
                 by,
             });
         }
-        let ground = |x: f64, y: f64, antenna: f64| DVec3::new(x, y, terrain.height(x, y) + antenna);
+        let ground =
+            |x: f64, y: f64, antenna: f64| DVec3::new(x, y, terrain.height(x, y) + antenna);
         let mut ground_nodes = Vec::new();
         if spec.communication.ground_station {
             let s = spec.uavs[0].start;
             ground_nodes.push(GroundNode {
                 name: "GCS".into(),
                 position: ground(s[0], s[1], spec.goal.antenna),
+                horizon: None,
             });
         }
         ground_nodes.push(GroundNode {
             name: "UGV0".into(),
             position: ground(g[0], g[1], spec.goal.antenna),
+            horizon: None,
         });
         for n in &spec.communication.ground_nodes {
             ground_nodes.push(GroundNode {
                 name: n.name.clone(),
                 position: ground(n.position[0], n.position[1], n.antenna),
+                horizon: None,
             });
         }
         let channel = Channel::new(&spec.communication);
+        if spec.communication.line_of_sight {
+            let (bx, by) = (spec.map.x, spec.map.y);
+            let step = spec.communication.line_of_sight_step;
+            for g in &mut ground_nodes {
+                // Far enough to reach every corner of the map box.
+                let reach = [bx[0], bx[1]]
+                    .iter()
+                    .flat_map(|x| {
+                        [by[0], by[1]].map(|y| (x - g.position.x).hypot(y - g.position.y))
+                    })
+                    .fold(0.0, f64::max);
+                g.horizon = Some(horizon::Horizon::new(&terrain, g.position, reach, step));
+            }
+        }
         Ok(Self {
             goal: DVec3::from_array(g),
             spec,

@@ -32,9 +32,6 @@ pub enum TerrainError {
     NotFinite { i: usize, j: usize, value: f64 },
 }
 
-/// Side of the square blocks (in nodes) whose maxima are cached.
-const BLOCK: usize = 8;
-
 /// A validated height grid.
 #[derive(Debug, Clone)]
 pub struct Terrain {
@@ -48,11 +45,17 @@ pub struct Terrain {
     sampling: Sampling,
     min: f64,
     max: f64,
-    /// Max height over each block of nodes `[bi*BLOCK, (bi+1)*BLOCK]` (inclusive edge, so a
-    /// bilinear cell never straddles two blocks without being covered by one).
-    block_max: Vec<f64>,
-    bnx: usize,
-    bny: usize,
+    /// Max pyramid: level l cell (i, j) holds the maximum over nodes
+    /// [i 2^l, (i + 1) 2^l] x [j 2^l, (j + 1) 2^l] (edges included, so every bilinear cell
+    /// lies inside one cell of every level). Level 0 cells are the bilinear cells.
+    pyramid: Vec<MaxLevel>,
+}
+
+#[derive(Debug, Clone)]
+struct MaxLevel {
+    nx: usize,
+    ny: usize,
+    max: Vec<f64>,
 }
 
 impl Terrain {
@@ -88,20 +91,7 @@ impl Terrain {
         }
         let min = heights.iter().copied().fold(f64::INFINITY, f64::min);
         let max = heights.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        let bnx = (nx - 1).div_ceil(BLOCK).max(1);
-        let bny = (ny - 1).div_ceil(BLOCK).max(1);
-        let mut block_max = vec![f64::NEG_INFINITY; bnx * bny];
-        for bj in 0..bny {
-            for bi in 0..bnx {
-                let mut m = f64::NEG_INFINITY;
-                for j in bj * BLOCK..=((bj + 1) * BLOCK).min(ny - 1) {
-                    for i in bi * BLOCK..=((bi + 1) * BLOCK).min(nx - 1) {
-                        m = m.max(heights[j * nx + i]);
-                    }
-                }
-                block_max[bj * bnx + bi] = m;
-            }
-        }
+        let pyramid = build_pyramid(nx, ny, &heights);
         Ok(Self {
             nx,
             ny,
@@ -113,16 +103,21 @@ impl Terrain {
             sampling,
             min,
             max,
-            block_max,
-            bnx,
-            bny,
+            pyramid,
         })
     }
 
     /// A flat terrain at height `h` covering `[0, width] x [0, height]`.
     pub fn flat(width: f64, height: f64, h: f64) -> Self {
-        Self::new(2, 2, (0.0, 0.0), (width, height), vec![h; 4], Sampling::Bilinear)
-            .expect("a 2 x 2 flat grid with positive size is valid")
+        Self::new(
+            2,
+            2,
+            (0.0, 0.0),
+            (width, height),
+            vec![h; 4],
+            Sampling::Bilinear,
+        )
+        .expect("a 2 x 2 flat grid with positive size is valid")
     }
 
     #[must_use]
@@ -205,38 +200,103 @@ impl Terrain {
         a + (b - a) * fv
     }
 
-    /// An upper bound of the ground height over the rectangle spanned by two points.
-    /// Exact to the block resolution; never below the true maximum of either sampling rule.
+    /// An upper bound of the ground height over the rectangle spanned by two points, never
+    /// below the true maximum under either sampling rule. Four look-ups in the max pyramid,
+    /// at the finest level where the rectangle spans at most two cells per axis.
     #[must_use]
     pub fn max_in_rect(&self, xa: f64, ya: f64, xb: f64, yb: f64) -> f64 {
-        let to_block = |w: f64, origin: f64, d: f64, n: usize, bn: usize, round_up: bool| {
-            let u = ((w - origin) / d).clamp(0.0, (n - 1) as f64);
-            // Nearest sampling may read the node one half cell further out.
-            let u = if round_up {
-                (u + 0.5).min((n - 1) as f64)
-            } else {
-                (u - 0.5).max(0.0)
-            };
-            ((u as usize) / BLOCK).min(bn - 1)
-        };
         if !(xa.is_finite() && ya.is_finite() && xb.is_finite() && yb.is_finite()) {
             return self.max;
         }
-        let (x_lo, x_hi) = (xa.min(xb), xa.max(xb));
-        let (y_lo, y_hi) = (ya.min(yb), ya.max(yb));
-        let bi0 = to_block(x_lo, self.x0, self.dx, self.nx, self.bnx, false);
-        let bi1 = to_block(x_hi, self.x0, self.dx, self.nx, self.bnx, true);
-        let bj0 = to_block(y_lo, self.y0, self.dy, self.ny, self.bny, false);
-        let bj1 = to_block(y_hi, self.y0, self.dy, self.ny, self.bny, true);
+        // Cell range at level 0; nearest sampling may read a node half a cell further out.
+        let cells = |a: f64, b: f64, origin: f64, d: f64, n: usize| {
+            let last = (n - 2) as f64;
+            let lo = ((a.min(b) - origin) / d - 0.5).floor().clamp(0.0, last) as usize;
+            let hi = ((a.max(b) - origin) / d + 0.5).floor().clamp(0.0, last) as usize;
+            (lo, hi)
+        };
+        let (mut i0, mut i1) = cells(xa, xb, self.x0, self.dx, self.nx);
+        let (mut j0, mut j1) = cells(ya, yb, self.y0, self.dy, self.ny);
+        let mut level = 0;
+        while (i1 - i0 > 1 || j1 - j0 > 1) && level + 1 < self.pyramid.len() {
+            level += 1;
+            i0 >>= 1;
+            i1 >>= 1;
+            j0 >>= 1;
+            j1 >>= 1;
+        }
+        let l = &self.pyramid[level];
         let mut m = f64::NEG_INFINITY;
-        for bj in bj0..=bj1 {
-            let row = &self.block_max[bj * self.bnx..(bj + 1) * self.bnx];
-            for v in &row[bi0..=bi1] {
-                m = m.max(*v);
+        for j in j0..=j1.min(l.ny - 1) {
+            for i in i0..=i1.min(l.nx - 1) {
+                m = m.max(l.max[j * l.nx + i]);
             }
         }
         m
     }
+}
+
+impl Terrain {
+    /// Whether the straight line a-b (absolute altitudes) stays more than `margin` above the
+    /// ground, resolved to `step` metres horizontally.
+    ///
+    /// Recursive bisection: a piece whose lower end is above every pyramid cell of its
+    /// bounding box (plus margin) is clear; otherwise its midpoint is tested and both halves
+    /// recurse until pieces are shorter than `step`. Most pieces are accepted at once, so a
+    /// long segment costs a few look-ups instead of one per sample.
+    #[must_use]
+    pub fn segment_clears(&self, a: glam::DVec3, b: glam::DVec3, margin: f64, step: f64) -> bool {
+        if a.z.min(b.z) - margin > self.max_in_rect(a.x, a.y, b.x, b.y) {
+            return true;
+        }
+        if (b - a).truncate().length() <= step {
+            return true;
+        }
+        let m = a.lerp(b, 0.5);
+        m.z - margin > self.height(m.x, m.y)
+            && self.segment_clears(a, m, margin, step)
+            && self.segment_clears(m, b, margin, step)
+    }
+}
+
+/// Builds the max pyramid of a validated grid.
+fn build_pyramid(nx: usize, ny: usize, h: &[f64]) -> Vec<MaxLevel> {
+    let (cx, cy) = (nx - 1, ny - 1);
+    let mut base = Vec::with_capacity(cx * cy);
+    for j in 0..cy {
+        for i in 0..cx {
+            let k = j * nx + i;
+            base.push(h[k].max(h[k + 1]).max(h[k + nx]).max(h[k + nx + 1]));
+        }
+    }
+    let mut levels = vec![MaxLevel {
+        nx: cx,
+        ny: cy,
+        max: base,
+    }];
+    while levels.last().is_some_and(|l| l.nx > 1 || l.ny > 1) {
+        let prev = levels.last().expect("at least one level");
+        let (px, py) = (prev.nx, prev.ny);
+        let (qx, qy) = (px.div_ceil(2), py.div_ceil(2));
+        let mut max = Vec::with_capacity(qx * qy);
+        for j in 0..qy {
+            for i in 0..qx {
+                let mut m = f64::NEG_INFINITY;
+                for jj in 2 * j..(2 * j + 2).min(py) {
+                    for ii in 2 * i..(2 * i + 2).min(px) {
+                        m = m.max(prev.max[jj * px + ii]);
+                    }
+                }
+                max.push(m);
+            }
+        }
+        levels.push(MaxLevel {
+            nx: qx,
+            ny: qy,
+            max,
+        });
+    }
+    levels
 }
 
 #[cfg(test)]
@@ -286,17 +346,81 @@ mod tests {
     }
 
     #[test]
+    fn max_in_rect_bounds_a_brute_force_maximum() {
+        // A bumpy grid and many rectangles: the bound is never below any sampled height.
+        let (nx, ny) = (53, 37);
+        let h: Vec<f64> = (0..ny)
+            .flat_map(|j| {
+                (0..nx).map(move |i| ((i * 7 + j * 13) % 17) as f64 + (i as f64 * 0.3).sin() * 5.0)
+            })
+            .collect();
+        for sampling in [Sampling::Bilinear, Sampling::NearestMatlab] {
+            let t = Terrain::new(nx, ny, (2.0, -3.0), (1.5, 2.0), h.clone(), sampling).unwrap();
+            for r in 0..200 {
+                let f =
+                    |k: usize, m: f64| ((r * k * 7919 + k * 104_729) % 1000) as f64 / 1000.0 * m;
+                let (xa, xb) = (2.0 + f(1, 80.0), 2.0 + f(2, 80.0));
+                let (ya, yb) = (-3.0 + f(3, 75.0), -3.0 + f(5, 75.0));
+                let bound = t.max_in_rect(xa, ya, xb, yb);
+                for a in 0..=20 {
+                    for b in 0..=20 {
+                        let x = xa + (xb - xa) * a as f64 / 20.0;
+                        let y = ya + (yb - ya) * b as f64 / 20.0;
+                        assert!(t.height(x, y) <= bound + 1e-12);
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn segment_clearance_finds_a_thin_spike() {
+        let (nx, ny) = (201, 3);
+        let mut h = vec![0.0; nx * ny];
+        for j in 0..ny {
+            h[j * nx + 137] = 100.0;
+        }
+        let t = Terrain::new(nx, ny, (0.0, 0.0), (1.0, 1.0), h, Sampling::Bilinear).unwrap();
+        let a = glam::DVec3::new(0.0, 1.0, 50.0);
+        let b = glam::DVec3::new(200.0, 1.0, 50.0);
+        assert!(!t.segment_clears(a, b, 10.0, 0.5));
+        let high = glam::DVec3::new(200.0, 1.0, 200.0);
+        assert!(t.segment_clears(glam::DVec3::new(0.0, 1.0, 200.0), high, 10.0, 0.5));
+    }
+
+    #[test]
     fn rejects_bad_grids() {
         assert!(matches!(
-            Terrain::new(1, 5, (0.0, 0.0), (1.0, 1.0), vec![0.0; 5], Sampling::Bilinear),
+            Terrain::new(
+                1,
+                5,
+                (0.0, 0.0),
+                (1.0, 1.0),
+                vec![0.0; 5],
+                Sampling::Bilinear
+            ),
             Err(TerrainError::TooSmall { .. })
         ));
         assert!(matches!(
-            Terrain::new(2, 2, (0.0, 0.0), (1.0, 1.0), vec![0.0; 3], Sampling::Bilinear),
+            Terrain::new(
+                2,
+                2,
+                (0.0, 0.0),
+                (1.0, 1.0),
+                vec![0.0; 3],
+                Sampling::Bilinear
+            ),
             Err(TerrainError::WrongLength { .. })
         ));
         assert!(matches!(
-            Terrain::new(2, 2, (0.0, 0.0), (1.0, 1.0), vec![0.0, f64::NAN, 0.0, 0.0], Sampling::Bilinear),
+            Terrain::new(
+                2,
+                2,
+                (0.0, 0.0),
+                (1.0, 1.0),
+                vec![0.0, f64::NAN, 0.0, 0.0],
+                Sampling::Bilinear
+            ),
             Err(TerrainError::NotFinite { i: 1, j: 0, .. })
         ));
     }

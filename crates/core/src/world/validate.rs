@@ -89,7 +89,10 @@ impl ScenarioSpec {
             for (c, v) in ["x", "y", "z"].iter().zip(u.start) {
                 finite(&f(&format!("start.{c}")), v)?;
             }
-            for (name, v) in [("max_turn_deg", u.max_turn_deg), ("max_climb_deg", u.max_climb_deg)] {
+            for (name, v) in [
+                ("max_turn_deg", u.max_turn_deg),
+                ("max_climb_deg", u.max_climb_deg),
+            ] {
                 if !(v > 0.0 && v <= 180.0) {
                     return Err(err(f(name), "an angle in (0, 180] degrees", v));
                 }
@@ -116,9 +119,18 @@ impl ScenarioSpec {
         positive("communication.line_of_sight_step", c.line_of_sight_step)?;
         non_negative("communication.outage_base_cost", c.outage_base_cost)?;
         for (k, n) in c.ground_nodes.iter().enumerate() {
-            finite(&format!("communication.ground_nodes[{k}].position.x"), n.position[0])?;
-            finite(&format!("communication.ground_nodes[{k}].position.y"), n.position[1])?;
-            non_negative(&format!("communication.ground_nodes[{k}].antenna"), n.antenna)?;
+            finite(
+                &format!("communication.ground_nodes[{k}].position.x"),
+                n.position[0],
+            )?;
+            finite(
+                &format!("communication.ground_nodes[{k}].position.y"),
+                n.position[1],
+            )?;
+            non_negative(
+                &format!("communication.ground_nodes[{k}].antenna"),
+                n.antenna,
+            )?;
         }
         for (k, w) in c.interference.iter().enumerate() {
             let f = |s: &str| format!("communication.interference[{k}].{s}");
@@ -179,7 +191,11 @@ impl ScenarioSpec {
         non_negative("timing.zone_radius", t.zone_radius)?;
         positive("timing.separation_step", t.separation_step)?;
         if self.planning.waypoints == 0 || self.planning.waypoints > 1000 {
-            return Err(err("planning.waypoints", "between 1 and 1000", self.planning.waypoints));
+            return Err(err(
+                "planning.waypoints",
+                "between 1 and 1000",
+                self.planning.waypoints,
+            ));
         }
         Ok(())
     }

@@ -46,6 +46,7 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<RawRaster, DemError> {
         format: FORMAT,
         detail: format!("not text (invalid UTF-8 at byte {})", e.valid_up_to()),
     })?;
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let bad_header = |line: usize, detail: String| DemError::BadHeader {
         path: path.into(),
         line,
@@ -206,6 +207,8 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<RawRaster, DemError> {
             south_west_node: (xll + 0.5 * cell.0, yll + 0.5 * cell.1),
             cell,
             crs: Crs::Unknown { model_type: None },
+            crs_inferred: false,
+            citation: None,
             tie_point: None,
             pixel_is_point: false,
             metres_per_unit: 1.0,

@@ -6,7 +6,10 @@
 //!   ModelTransformationTag (34264): cell size and where the raster sits;
 //! - GeoKeyDirectoryTag (34735): GTModelTypeGeoKey (1024), GTRasterTypeGeoKey (1025:
 //!   PixelIsArea / PixelIsPoint), GeographicTypeGeoKey (2048), ProjectedCSTypeGeoKey (3072),
-//!   ProjLinearUnitsGeoKey (3076);
+//!   ProjLinearUnitsGeoKey (3076); when ProjectedCSTypeGeoKey is user-defined, a UTM
+//!   ProjectionGeoKey (3074) with a known datum (GeogGeodeticDatumGeoKey 2050) still yields
+//!   the EPSG code (SPSO's DEM is written that way: MGA zone 48 = EPSG 28348); the citation
+//!   (GTCitationGeoKey 1026 or PCSCitationGeoKey 3073, in GeoAsciiParamsTag 34737) is kept;
 //! - GDAL_NODATA (42113), an ASCII number.
 //!
 //! Only the first image (IFD) is read: later ones are overviews or masks in DEM files.
@@ -30,14 +33,19 @@ const MAX_EXPANSION: usize = 4096;
 
 const FORMAT: &str = "TIFF";
 
-/// `ModelTransformationTag`, absent from `tiff::tags::Tag`'s named list.
+/// `ModelTransformationTag` and `GeoAsciiParamsTag`, absent from `tiff::tags::Tag`.
 const MODEL_TRANSFORMATION: u16 = 34264;
+const GEO_ASCII_PARAMS: u16 = 34737;
 
 // GeoKey ids.
 const GT_MODEL_TYPE: u16 = 1024;
 const GT_RASTER_TYPE: u16 = 1025;
+const GT_CITATION: u16 = 1026;
 const GEOGRAPHIC_TYPE: u16 = 2048;
+const GEODETIC_DATUM: u16 = 2050;
 const PROJECTED_CS_TYPE: u16 = 3072;
+const PCS_CITATION: u16 = 3073;
+const PROJECTION: u16 = 3074;
 const PROJ_LINEAR_UNITS: u16 = 3076;
 /// GeoKey value meaning "user-defined" (no EPSG code).
 const USER_DEFINED: u16 = 32767;
@@ -194,13 +202,28 @@ fn f64_list(
     }
 }
 
-/// GeoKeys with a value stored in the directory itself (TIFFTagLocation 0).
-fn geo_keys(path: &Path, dec: &mut Decoder<Cursor<&[u8]>>) -> Result<Vec<(u16, u16)>, DemError> {
+/// The GeoKey directory: keys with a SHORT value stored in the directory itself, and the
+/// citation (GTCitationGeoKey, else PCSCitationGeoKey) from GeoAsciiParamsTag.
+struct GeoKeys {
+    shorts: Vec<(u16, u16)>,
+    citation: Option<String>,
+}
+
+impl GeoKeys {
+    fn get(&self, id: u16) -> Option<u16> {
+        self.shorts.iter().find(|k| k.0 == id).map(|k| k.1)
+    }
+}
+
+fn geo_keys(path: &Path, dec: &mut Decoder<Cursor<&[u8]>>) -> Result<GeoKeys, DemError> {
     let dir = dec
         .find_tag_unsigned_vec::<u16>(Tag::GeoKeyDirectoryTag)
         .map_err(|e| tiff_error(path, e))?;
     let Some(dir) = dir else {
-        return Ok(Vec::new());
+        return Ok(GeoKeys {
+            shorts: Vec::new(),
+            citation: None,
+        });
     };
     if dir.len() < 4 {
         return Err(DemError::BadGeoreference {
@@ -211,13 +234,63 @@ fn geo_keys(path: &Path, dec: &mut Decoder<Cursor<&[u8]>>) -> Result<Vec<(u16, u
             ),
         });
     }
-    let n = usize::from(dir[3]);
-    Ok(dir[4..]
-        .chunks_exact(4)
-        .take(n)
+    let entries: Vec<&[u16]> = dir[4..].chunks_exact(4).take(usize::from(dir[3])).collect();
+    let shorts = entries
+        .iter()
         .filter(|k| k[1] == 0 && k[2] == 1)
         .map(|k| (k[0], k[3]))
-        .collect())
+        .collect();
+    // The citation is a convenience: an unreadable one is dropped, not an error.
+    let ascii = dec
+        .find_tag(Tag::Unknown(GEO_ASCII_PARAMS))
+        .ok()
+        .flatten()
+        .and_then(|v| v.into_string().ok());
+    let citation = ascii.and_then(|text| {
+        [GT_CITATION, PCS_CITATION].iter().find_map(|id| {
+            let k = entries
+                .iter()
+                .find(|k| k[0] == *id && k[1] == GEO_ASCII_PARAMS)?;
+            let start = usize::from(k[3]);
+            let piece = text.get(start..start + usize::from(k[2]))?;
+            let piece = piece.trim_matches(|c: char| c == '|' || c == '\0' || c.is_whitespace());
+            (!piece.is_empty()).then(|| piece.to_string())
+        })
+    });
+    Ok(GeoKeys { shorts, citation })
+}
+
+/// EPSG code of a UTM-based projected CRS described by parts: a user-defined
+/// ProjectedCSTypeGeoKey with ProjectionGeoKey = EPSG "UTM zone nN" (16000 + n) or "UTM zone
+/// nS" (16100 + n) and a known datum. Covers the common UTM families only; anything else
+/// stays without a code rather than guessing.
+fn utm_epsg(projection: u16, datum: u16) -> Option<u16> {
+    let (zone, south) = match projection {
+        16001..=16060 => (projection - 16000, false),
+        16101..=16160 => (projection - 16100, true),
+        _ => return None,
+    };
+    match (datum, south) {
+        (6326, false) => Some(32600 + zone), // WGS 84 / UTM zone nN
+        (6326, true) => Some(32700 + zone),  // WGS 84 / UTM zone nS
+        (6283, true) if (48..=58).contains(&zone) => Some(28300 + zone), // GDA94 / MGA zone n
+        (1168, true) if (46..=59).contains(&zone) => Some(7800 + zone), // GDA2020 / MGA zone n
+        (6269, false) if (1..=23).contains(&zone) => Some(26900 + zone), // NAD83 / UTM zone nN
+        (6258, false) if (28..=38).contains(&zone) => Some(25800 + zone), // ETRS89 / UTM zone nN
+        _ => None,
+    }
+}
+
+/// Datum code of a geographic CRS code, for the datums [`utm_epsg`] knows.
+fn datum_of(geographic: u16) -> Option<u16> {
+    match geographic {
+        4326 => Some(6326),
+        4283 => Some(6283),
+        7844 => Some(1168),
+        4269 => Some(6269),
+        4258 => Some(6258),
+        _ => None,
+    }
 }
 
 fn read_georef(
@@ -238,7 +311,7 @@ fn read_georef(
         "ModelTransformationTag",
     )?;
     let keys = geo_keys(path, dec)?;
-    let key = |id: u16| keys.iter().find(|k| k.0 == id).map(|k| k.1);
+    let key = |id: u16| keys.get(id);
 
     // Raster-space (0, 0) -> model (x0, y0), with cell (sx, sy) and y decreasing downwards.
     let (x0, y0, sx, sy, tie_point) = match (scale, ties, transform) {
@@ -298,13 +371,20 @@ fn read_georef(
         (x0, y0)
     };
     let model_type = key(GT_MODEL_TYPE);
-    let crs = match (key(PROJECTED_CS_TYPE), key(GEOGRAPHIC_TYPE), model_type) {
-        (Some(code), _, _) if code != USER_DEFINED && code != 0 => Crs::Projected(code),
-        (_, Some(code), m) if code != USER_DEFINED && code != 0 && m != Some(1) => {
-            Crs::Geographic(code)
-        }
-        (_, _, Some(2)) => Crs::Geographic(0),
-        _ => Crs::Unknown { model_type },
+    let known = |code: Option<u16>| code.filter(|c| *c != USER_DEFINED && *c != 0);
+    let datum =
+        known(key(GEODETIC_DATUM)).or_else(|| known(key(GEOGRAPHIC_TYPE)).and_then(datum_of));
+    let inferred = known(key(PROJECTION))
+        .zip(datum)
+        .and_then(|(p, d)| utm_epsg(p, d));
+    let projected = known(key(PROJECTED_CS_TYPE));
+    let geographic = known(key(GEOGRAPHIC_TYPE));
+    let (crs, crs_inferred) = match (projected, inferred, geographic) {
+        (Some(code), _, _) => (Crs::Projected(code), false),
+        (None, Some(code), _) if model_type != Some(2) => (Crs::Projected(code), true),
+        (None, _, Some(code)) if model_type != Some(1) => (Crs::Geographic(code), false),
+        _ if model_type == Some(2) => (Crs::Geographic(0), false),
+        _ => (Crs::Unknown { model_type }, false),
     };
     let metres_per_unit = match key(PROJ_LINEAR_UNITS) {
         Some(9002) => 0.3048,
@@ -317,6 +397,8 @@ fn read_georef(
         south_west_node: (ulx + 0.5 * sx, uly - (rows as f64 - 0.5) * sy),
         cell: (sx, sy),
         crs,
+        crs_inferred,
+        citation: keys.citation,
         tie_point,
         pixel_is_point,
         metres_per_unit,
@@ -349,5 +431,24 @@ fn tiff_error(path: &Path, e: TiffError) -> DemError {
             format: FORMAT,
             detail: other.to_string(),
         },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn utm_codes_from_projection_and_datum() {
+        assert_eq!(utm_epsg(16148, 6283), Some(28348)); // GDA94 / MGA zone 48 (SPSO)
+        assert_eq!(utm_epsg(16148, 6326), Some(32748)); // WGS 84 / UTM zone 48S
+        assert_eq!(utm_epsg(16032, 6326), Some(32632)); // WGS 84 / UTM zone 32N
+        assert_eq!(utm_epsg(16156, 1168), Some(7856)); // GDA2020 / MGA zone 56
+        assert_eq!(utm_epsg(16018, 6269), Some(26918)); // NAD83 / UTM zone 18N
+        assert_eq!(utm_epsg(16032, 6258), Some(25832)); // ETRS89 / UTM zone 32N
+        assert_eq!(utm_epsg(16048, 6283), None); // GDA94 is southern only
+        assert_eq!(utm_epsg(16148, 6999), None); // unknown datum
+        assert_eq!(utm_epsg(9807, 6326), None); // not a UTM zone
+        assert_eq!(datum_of(4326), Some(6326));
     }
 }

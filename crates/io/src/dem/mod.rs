@@ -28,6 +28,7 @@
 mod error;
 mod esri_ascii;
 mod geotiff;
+mod nodata;
 
 use std::path::{Path, PathBuf};
 
@@ -123,7 +124,7 @@ pub struct TiePoint {
 }
 
 /// Where the raster sits in the file's coordinate system (all in CRS units).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct GeoReference {
     /// Outer north-west corner of the raster.
     pub upper_left_corner: (f64, f64),
@@ -134,6 +135,11 @@ pub struct GeoReference {
     /// Cell size (x, y), positive, in CRS units (degrees for a geographic CRS).
     pub cell: (f64, f64),
     pub crs: Crs,
+    /// True when the EPSG code was derived from the projection (UTM zone) and datum keys
+    /// because `ProjectedCSTypeGeoKey` was user-defined.
+    pub crs_inferred: bool,
+    /// The CRS citation text of a GeoTIFF (e.g. "GDA94 / MGA zone 48"), if any.
+    pub citation: Option<String>,
     /// The first GeoTIFF tie point as written (None for ASCII grids or a transformation tag).
     pub tie_point: Option<TiePoint>,
     /// GeoTIFF `GTRasterTypeGeoKey` = PixelIsPoint (already accounted for in the corners).
@@ -171,13 +177,13 @@ impl LoadedDem {
     /// World coordinates of the raster's outer lower-left corner, if georeferenced.
     #[must_use]
     pub fn lower_left(&self) -> Option<(f64, f64)> {
-        self.georef.map(|g| g.lower_left_corner)
+        self.georef.as_ref().map(|g| g.lower_left_corner)
     }
 
     /// Cell size as written in the file (CRS units), if georeferenced.
     #[must_use]
     pub fn file_cell_size(&self) -> Option<(f64, f64)> {
-        self.georef.map(|g| g.cell)
+        self.georef.as_ref().map(|g| g.cell)
     }
 
     /// Maps terrain coordinates (x, y) to the file's world coordinates (CRS units).
@@ -185,7 +191,7 @@ impl LoadedDem {
     /// as [`Self::cell_metres`]. None when the file has no georeferencing.
     #[must_use]
     pub fn local_to_world(&self, x: f64, y: f64) -> Option<(f64, f64)> {
-        let g = self.georef?;
+        let g = self.georef.as_ref()?;
         Some(match self.options.frame {
             DemFrame::Georeferenced => (
                 g.south_west_node.0 + x * g.cell.0 / self.cell_metres.0,
@@ -202,7 +208,7 @@ impl LoadedDem {
     /// The inverse of [`Self::local_to_world`].
     #[must_use]
     pub fn world_to_local(&self, wx: f64, wy: f64) -> Option<(f64, f64)> {
-        let g = self.georef?;
+        let g = self.georef.as_ref()?;
         Some(match self.options.frame {
             DemFrame::Georeferenced => (
                 (wx - g.south_west_node.0) * self.cell_metres.0 / g.cell.0,
@@ -248,7 +254,8 @@ fn sniff(path: &Path, bytes: &[u8]) -> Result<DemFormat, DemError> {
     if matches!(magic, Some(b"II*\0" | b"MM\0*" | b"II+\0" | b"MM\0+")) {
         return Ok(DemFormat::GeoTiff);
     }
-    let head = &bytes[..bytes.len().min(64)];
+    let text = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
+    let head = &text[..text.len().min(64)];
     let first_word: String = head
         .iter()
         .skip_while(|b| b.is_ascii_whitespace())
@@ -271,53 +278,6 @@ fn sniff(path: &Path, bytes: &[u8]) -> Result<DemFormat, DemError> {
             ext,
         }),
     }
-}
-
-fn is_nodata(v: f64, nodata: Option<f64>) -> bool {
-    !v.is_finite()
-        || v.abs() > 1e30
-        || nodata.is_some_and(|nd| v == nd || (v - nd).abs() <= 1e-6 * nd.abs().max(1.0))
-}
-
-/// Replaces nodata cells by their nearest valid cell: a breadth-first search from all valid
-/// cells at once over the 8 neighbours, level by level; within a level, edge neighbours are
-/// claimed before corner neighbours, then row-major order decides. Returns how many cells
-/// were filled, or None if no cell is valid.
-fn fill_nodata(values: &mut [f64], columns: usize, nodata: Option<f64>) -> Option<usize> {
-    const EDGE: [(i64, i64); 4] = [(0, -1), (-1, 0), (1, 0), (0, 1)];
-    const CORNER: [(i64, i64); 4] = [(-1, -1), (1, -1), (-1, 1), (1, 1)];
-    let mut pending: Vec<bool> = values.iter().map(|v| is_nodata(*v, nodata)).collect();
-    let filled = pending.iter().filter(|b| **b).count();
-    if filled == 0 {
-        return Some(0);
-    }
-    if filled == values.len() {
-        return None;
-    }
-    let rows = values.len() / columns;
-    let mut frontier: Vec<usize> = (0..values.len()).filter(|k| !pending[*k]).collect();
-    while !frontier.is_empty() {
-        let mut next = Vec::new();
-        for steps in [&EDGE, &CORNER] {
-            for &k in &frontier {
-                let (i, j) = ((k % columns) as i64, (k / columns) as i64);
-                for &(di, dj) in steps {
-                    let (ni, nj) = (i + di, j + dj);
-                    if ni < 0 || nj < 0 || ni >= columns as i64 || nj >= rows as i64 {
-                        continue;
-                    }
-                    let n = nj as usize * columns + ni as usize;
-                    if pending[n] {
-                        pending[n] = false;
-                        values[n] = values[k];
-                        next.push(n);
-                    }
-                }
-            }
-        }
-        frontier = next;
-    }
-    Some(filled)
 }
 
 /// WGS 84 ground size in metres of a (dlon, dlat) degree cell at latitude `lat` degrees.
@@ -345,9 +305,9 @@ fn build(
         sample_type,
         georef,
     } = raw;
-    let nodata_filled = fill_nodata(&mut values, columns.max(1), nodata)
+    let nodata_filled = nodata::fill(&mut values, columns.max(1), nodata)
         .ok_or_else(|| DemError::AllNodata { path: path.into() })?;
-    let cell_metres = match georef {
+    let cell_metres = match &georef {
         None => (1.0, 1.0),
         Some(g) if matches!(g.crs, Crs::Geographic(_)) => {
             let centre_lat = 0.5 * (g.upper_left_corner.1 + g.lower_left_corner.1);
@@ -404,35 +364,6 @@ fn build(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn fill_takes_the_nearest_valid_cell() {
-        let nd = -9999.0;
-        #[rustfmt::skip]
-        let mut v = vec![
-            1.0, nd,  nd,  nd,
-            nd,  nd,  nd,  2.0,
-            nd,  nd,  nd,  nd,
-        ];
-        assert_eq!(fill_nodata(&mut v, 4, Some(nd)), Some(9));
-        #[rustfmt::skip]
-        let expected = vec![
-            1.0, 1.0, 2.0, 2.0,
-            1.0, 1.0, 2.0, 2.0,
-            1.0, 1.0, 2.0, 2.0,
-        ];
-        assert_eq!(v, expected);
-    }
-
-    #[test]
-    fn sentinels_and_non_finite_values_are_nodata() {
-        let mut v = vec![5.0, f64::NAN, f64::from(f32::MIN), f64::INFINITY];
-        // GDAL's text for f32::MIN is not exactly f32::MIN.
-        assert_eq!(fill_nodata(&mut v, 2, Some(-3.402823e38)), Some(3));
-        assert_eq!(v, vec![5.0; 4]);
-        let mut all = vec![-9999.0; 4];
-        assert_eq!(fill_nodata(&mut all, 2, Some(-9999.0)), None);
-    }
 
     #[test]
     fn degree_cells_have_the_expected_ground_size() {

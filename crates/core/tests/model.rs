@@ -1,0 +1,331 @@
+//! Analytic tests of the planning model on hand-made worlds (flat terrain unless a ridge is
+//! the point): each asserts a number or a verdict that follows from geometry alone.
+
+#![allow(clippy::unwrap_used)] // tests fail loudly by design
+
+use glam::DVec3;
+use swarmplan_core::cost::assess;
+use swarmplan_core::cost::comm::{contact_at, Contact};
+use swarmplan_core::feasibility::{check, ViolationKind};
+use swarmplan_core::plan::{Path, Plan};
+use swarmplan_core::world::spec::*;
+use swarmplan_core::world::terrain::Sampling;
+use swarmplan_core::world::{Terrain, Threat, World};
+
+/// A 1000 x 1000 m flat world at height 0, no threats, one UAV per start, goal (900, 900).
+fn spec(starts: &[[f64; 3]]) -> ScenarioSpec {
+    ScenarioSpec {
+        name: "test".into(),
+        description: String::new(),
+        terrain: TerrainSpec::default(),
+        map: MapSpec {
+            x: [0.0, 1000.0],
+            y: [0.0, 1000.0],
+            ..MapSpec::default()
+        },
+        threats: vec![],
+        goal: GoalSpec {
+            position: [900.0, 900.0, 150.0],
+            antenna: 2.0,
+        },
+        uavs: starts
+            .iter()
+            .map(|s| UavSpec {
+                start: *s,
+                battery_wh: 100.0,
+                ..UavSpec::default()
+            })
+            .collect(),
+        communication: CommSpec {
+            requirement: CommRequirement::None,
+            ..CommSpec::default()
+        },
+        energy: EnergySpec::default(),
+        objective: ObjectiveSpec::default(),
+        timing: TimingSpec::default(),
+        planning: PlanningSpec::default(),
+    }
+}
+
+fn flat() -> Terrain {
+    Terrain::flat(1000.0, 1000.0, 0.0)
+}
+
+fn path(points: &[[f64; 3]]) -> Path {
+    Path {
+        waypoints: points.iter().map(|p| DVec3::from_array(*p)).collect(),
+    }
+}
+
+fn kinds(world: &World, plan: &Plan) -> Vec<ViolationKind> {
+    check(world, plan).into_iter().map(|v| v.kind).collect()
+}
+
+#[test]
+fn straight_path_length_is_the_distance() {
+    let w = World::new(spec(&[[100.0, 100.0, 150.0]]), flat()).unwrap();
+    let plan = Plan::straight(&[w.start(0)], w.goal, 5);
+    let a = assess(&w, &plan, true);
+    let want = (800.0f64 * 800.0 * 2.0).sqrt();
+    assert!((a.per_uav[0].raw.length - want).abs() < 1e-9);
+    assert!((a.per_uav[0].length_m - want).abs() < 1e-9);
+    // A straight line turns nowhere and stays in the band: no smoothness, no turning.
+    assert_eq!(a.per_uav[0].raw.smoothness, 0.0);
+    assert_eq!(a.per_uav[0].raw.turning, 0.0);
+    assert!(a.feasible(), "{:?}", a.violations);
+}
+
+#[test]
+fn a_segment_clear_of_a_cylinder_costs_nothing_and_one_through_it_violates() {
+    let mut s = spec(&[[100.0, 100.0, 150.0]]);
+    // 200 m beside the diagonal: far beyond r + 11 m.
+    s.threats = vec![Threat {
+        x: 500.0 + 141.0,
+        y: 500.0 - 141.0,
+        z: 150.0,
+        r: 50.0,
+    }];
+    let w = World::new(s.clone(), flat()).unwrap();
+    let plan = Plan::straight(&[w.start(0)], w.goal, 5);
+    let a = assess(&w, &plan, true);
+    assert_eq!(a.per_uav[0].raw.threat, 0.0);
+    assert!(!kinds(&w, &plan).contains(&ViolationKind::Threat));
+
+    // On the diagonal: a collision, reported with its place.
+    s.threats[0].x = 500.0;
+    s.threats[0].y = 500.0;
+    let w = World::new(s, flat()).unwrap();
+    let v = check(&w, &plan);
+    let hit = v
+        .iter()
+        .find(|v| v.kind == ViolationKind::Threat)
+        .expect("a threat violation");
+    assert!((hit.amount - 51.0).abs() < 1e-9, "intrusion {}", hit.amount);
+    assert!(hit.position.is_some() && hit.time.is_some());
+    assert!(assess(&w, &plan, false).total > 1000.0);
+}
+
+#[test]
+fn a_ninety_degree_turn_violates_and_a_thirty_degree_one_does_not() {
+    let w = World::new(spec(&[[100.0, 100.0, 150.0]]), flat()).unwrap();
+    let sharp = Plan {
+        uavs: vec![path(&[
+            [100.0, 100.0, 150.0],
+            [900.0, 100.0, 150.0],
+            [900.0, 900.0, 150.0],
+        ])],
+    };
+    assert!(kinds(&w, &sharp).contains(&ViolationKind::Turn));
+    let v = check(&w, &sharp);
+    let turn = v.iter().find(|v| v.kind == ViolationKind::Turn).unwrap();
+    assert!((turn.amount - 45.0).abs() < 1e-9);
+    // A slight bend off the diagonal: headings 38.7 and 51.3 deg, a 12.7 deg turn.
+    let mid = [550.0, 450.0, 150.0];
+    let gentle = Plan {
+        uavs: vec![path(&[[100.0, 100.0, 150.0], mid, [900.0, 900.0, 150.0]])],
+    };
+    assert!(
+        !kinds(&w, &gentle).contains(&ViolationKind::Turn),
+        "{:?}",
+        check(&w, &gentle)
+    );
+}
+
+#[test]
+fn a_steep_climb_violates() {
+    let w = World::new(spec(&[[100.0, 100.0, 150.0]]), flat()).unwrap();
+    let plan = Plan {
+        uavs: vec![path(&[
+            [100.0, 100.0, 100.0],
+            [130.0, 130.0, 200.0],
+            [900.0, 900.0, 150.0],
+        ])],
+    };
+    let mut s = spec(&[[100.0, 100.0, 100.0]]);
+    s.map.z_agl = [50.0, 250.0];
+    let w2 = World::new(s, flat()).unwrap();
+    assert!(kinds(&w2, &plan).contains(&ViolationKind::Climb));
+    let _ = w;
+}
+
+#[test]
+fn crossing_at_the_same_time_violates_separation_and_at_different_times_does_not() {
+    // Two UAVs on the two diagonals of a square, crossing at its centre.
+    let mut s = spec(&[[100.0, 100.0, 150.0], [100.0, 900.0, 150.0]]);
+    s.goal.position = [900.0, 500.0, 150.0];
+    let w = World::new(s.clone(), flat()).unwrap();
+    // Same length legs: both reach (500, 500) at the same time.
+    let a = path(&[
+        [100.0, 100.0, 150.0],
+        [500.0, 500.0, 150.0],
+        [700.0, 700.0, 150.0],
+        [900.0, 500.0, 150.0],
+    ]);
+    let b = path(&[
+        [100.0, 900.0, 150.0],
+        [500.0, 500.0, 150.0],
+        [700.0, 300.0, 150.0],
+        [900.0, 500.0, 150.0],
+    ]);
+    let plan = Plan {
+        uavs: vec![a.clone(), b],
+    };
+    let v = check(&w, &plan);
+    let sep: Vec<_> = v
+        .iter()
+        .filter(|v| v.kind == ViolationKind::Separation)
+        .collect();
+    assert_eq!(sep.len(), 1, "{v:?}");
+    assert_eq!((sep[0].uav, sep[0].other), (0, Some(1)));
+    // UAV 1 takes a longer route before the crossing, so it passes the centre later.
+    let late = path(&[
+        [100.0, 900.0, 150.0],
+        [100.0, 600.0, 150.0],
+        [300.0, 500.0, 150.0],
+        [500.0, 500.0, 150.0],
+        [700.0, 300.0, 150.0],
+        [900.0, 500.0, 150.0],
+    ]);
+    let mut s2 = s;
+    s2.timing.policy = TimingPolicy::Cruise;
+    let w2 = World::new(s2, flat()).unwrap();
+    let plan2 = Plan {
+        uavs: vec![a, late],
+    };
+    assert!(
+        !kinds(&w2, &plan2).contains(&ViolationKind::Separation),
+        "{:?}",
+        check(&w2, &plan2)
+    );
+}
+
+#[test]
+fn speeds_out_of_range_count_in_safety_and_violate() {
+    let mut s = spec(&[[100.0, 100.0, 150.0]]);
+    s.timing.policy = TimingPolicy::Cruise;
+    s.uavs[0].cruise_speed = 40.0;
+    s.uavs[0].payload_kg = 2.0;
+    let w = World::new(s, flat()).unwrap();
+    let plan = Plan::straight(&[w.start(0)], w.goal, 3);
+    let a = assess(&w, &plan, true);
+    // 4 segments too fast + 1 payload indicator.
+    assert_eq!(a.per_uav[0].raw.safety, 5.0);
+    let k = kinds(&w, &plan);
+    assert!(k.contains(&ViolationKind::Speed) && k.contains(&ViolationKind::Payload));
+}
+
+#[test]
+fn a_small_battery_violates_energy() {
+    let mut s = spec(&[[100.0, 100.0, 150.0]]);
+    s.uavs[0].battery_wh = 1.0;
+    let w = World::new(s, flat()).unwrap();
+    let plan = Plan::straight(&[w.start(0)], w.goal, 3);
+    let v = check(&w, &plan);
+    assert!(v.iter().any(|v| v.kind == ViolationKind::Energy), "{v:?}");
+    // The physical energy is P(15 m/s) L / 15 with the payload, at least 9 J/m.
+    let a = assess(&w, &plan, true);
+    assert!(a.per_uav[0].energy_j > 9.0 * a.per_uav[0].length_m);
+}
+
+#[test]
+fn terrain_in_the_way_violates_clearance() {
+    // A 400 m high block in the middle of the map.
+    let nx = 101;
+    let h: Vec<f64> = (0..nx)
+        .flat_map(|j| {
+            (0..nx).map(move |i| {
+                if (40..=60).contains(&i) && (40..=60).contains(&j) {
+                    400.0
+                } else {
+                    0.0
+                }
+            })
+        })
+        .collect();
+    let t = Terrain::new(nx, nx, (0.0, 0.0), (10.0, 10.0), h, Sampling::Bilinear).unwrap();
+    let w = World::new(spec(&[[100.0, 100.0, 150.0]]), t).unwrap();
+    let plan = Plan {
+        uavs: vec![path(&[
+            [100.0, 100.0, 150.0],
+            [200.0, 200.0, 150.0],
+            [900.0, 900.0, 150.0],
+        ])],
+    };
+    assert!(kinds(&w, &plan).contains(&ViolationKind::Terrain));
+}
+
+/// Communication worlds: ground station at the start, UGV0 at the goal, 300 m range.
+fn comm_spec(starts: &[[f64; 3]], goal: [f64; 3]) -> ScenarioSpec {
+    let mut s = spec(starts);
+    s.goal.position = goal;
+    s.communication = CommSpec {
+        requirement: CommRequirement::Relay,
+        range: 300.0,
+        shadowing_sigma_db: 0.0,
+        max_outage_s: 5.0,
+        ..CommSpec::default()
+    };
+    s.timing.separation = 0.0;
+    s
+}
+
+#[test]
+fn a_relay_chain_connects_a_uav_out_of_direct_range() {
+    let w = World::new(
+        comm_spec(&[[100.0, 500.0, 150.0]; 3], [900.0, 500.0, 150.0]),
+        flat(),
+    )
+    .unwrap();
+    let at = |x: f64| DVec3::new(x, 500.0, 150.0);
+    // UAV 0 at x = 500 is 400 m from both ground nodes (range 300 m): out alone.
+    assert_eq!(contact_at(&w, 10.0, &[at(500.0)])[0], Contact::Out);
+    // With UAV 1 at x = 300 (200 m from the station, 200 m from UAV 0): relayed.
+    let c = contact_at(&w, 10.0, &[at(500.0), at(300.0)]);
+    assert_eq!(c, vec![Contact::Relayed, Contact::Direct]);
+    // A longer chain: station -> 2 -> 1 -> 0 with 250 m hops, UAV 0 600 m out.
+    let c = contact_at(&w, 10.0, &[at(850.0 - 100.0 - 150.0), at(450.0), at(250.0)]);
+    assert_eq!(c[2], Contact::Direct);
+    assert_ne!(c[0], Contact::Out);
+    // The relaxed mode only asks for a neighbour.
+    let mut s = comm_spec(&[[100.0, 500.0, 150.0]; 2], [900.0, 500.0, 150.0]);
+    s.communication.requirement = CommRequirement::Neighbour;
+    let w = World::new(s, flat()).unwrap();
+    let c = contact_at(&w, 10.0, &[at(500.0), at(520.0)]);
+    assert_eq!(c, vec![Contact::Relayed, Contact::Relayed]);
+}
+
+#[test]
+fn a_uav_behind_a_ridge_has_no_line_of_sight() {
+    // A 500 m ridge across the map at x in [240, 260], between the station (x = 100) and
+    // a UAV at x = 350: 250 m away, in range, but hidden.
+    let nx = 101;
+    let h: Vec<f64> = (0..nx)
+        .flat_map(|_| (0..nx).map(|i| if (24..=26).contains(&i) { 500.0 } else { 0.0 }))
+        .collect();
+    let t = Terrain::new(nx, nx, (0.0, 0.0), (10.0, 10.0), h, Sampling::Bilinear).unwrap();
+    let mut s = comm_spec(&[[100.0, 500.0, 150.0]], [900.0, 500.0, 150.0]);
+    let w = World::new(s.clone(), t.clone()).unwrap();
+    let before = DVec3::new(200.0, 500.0, 150.0);
+    let behind = DVec3::new(350.0, 500.0, 150.0);
+    assert_eq!(contact_at(&w, 10.0, &[before])[0], Contact::Direct);
+    assert_eq!(contact_at(&w, 10.0, &[behind])[0], Contact::Out);
+    // Without the terrain check the same UAV is in contact: the ridge made the difference.
+    s.communication.line_of_sight = false;
+    let w = World::new(s, t).unwrap();
+    assert_eq!(contact_at(&w, 10.0, &[behind])[0], Contact::Direct);
+}
+
+#[test]
+fn flying_out_of_range_costs_and_violates_outage() {
+    let w = World::new(
+        comm_spec(&[[100.0, 500.0, 150.0]], [900.0, 500.0, 150.0]),
+        flat(),
+    )
+    .unwrap();
+    let plan = Plan::straight(&[w.start(0)], w.goal, 3);
+    let a = assess(&w, &plan, true);
+    // Out of both 300 m disks for the middle of the 800 m trip (about 200 m, 13 s at 15 m/s).
+    assert!(a.per_uav[0].outage_s >= 10.0, "{}", a.per_uav[0].outage_s);
+    assert!(a.per_uav[0].raw.communication > 0.0);
+    assert!(kinds(&w, &plan).contains(&ViolationKind::Comm));
+}
