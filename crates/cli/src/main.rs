@@ -25,6 +25,8 @@ enum Command {
     /// List built-in scenarios or print one as TOML.
     #[command(subcommand)]
     Scenario(ScenarioCommand),
+    /// Plan a scenario (default: paper Case 1 with DLS-SMPSO) and write plan.json.
+    Plan(commands::plan::PlanArgs),
     /// Cost breakdown and every violation of a plan file.
     Evaluate(commands::evaluate::EvaluateArgs),
 }
@@ -58,6 +60,7 @@ fn main() -> ExitCode {
         Command::Scenario(ScenarioCommand::Show { scenario }) => {
             commands::scenario::show(&scenario)
         }
+        Command::Plan(args) => commands::plan::run_command(&args),
         Command::Evaluate(args) => commands::evaluate::run(&args),
     };
     match result {

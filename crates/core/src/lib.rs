@@ -18,6 +18,7 @@ pub mod plan;
 pub mod planning;
 pub mod problem;
 pub mod rng;
+pub mod run;
 pub mod timing;
 pub mod world;
 

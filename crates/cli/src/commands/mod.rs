@@ -1,5 +1,6 @@
 //! One module per subcommand.
 pub mod evaluate;
+pub mod plan;
 pub mod scenario;
 
 use anyhow::Result;

@@ -45,6 +45,11 @@ pub fn kinematics(
     let spec = &world.spec.uavs[uav];
     let max_turn = spec.max_turn_deg.to_radians();
     let max_climb = spec.max_climb_deg.to_radians();
+    let tan_climb = if max_climb >= std::f64::consts::FRAC_PI_2 {
+        f64::INFINITY
+    } else {
+        max_climb.tan()
+    };
     let p = &tp.abs;
     let mut k = Kinematics::default();
     let mut last_heading: Option<f64> = None;
@@ -52,9 +57,10 @@ pub fn kinematics(
         let d = p[s + 1] - p[s];
         k.vertical_abs += d.z.abs();
         k.climb_up += d.z.max(0.0);
-        let horizontal = d.x.hypot(d.y);
-        let climb = d.z.atan2(horizontal);
-        if climb.abs() > max_climb + 1e-9 {
+        let horizontal = (d.x * d.x + d.y * d.y).sqrt();
+        // |climb| > limit, without an atan2 unless it is violated.
+        if d.z.abs() > tan_climb * horizontal && d.z.abs().atan2(horizontal) > max_climb + 1e-9 {
+            let climb = d.z.atan2(horizontal);
             sink.add(
                 ViolationKind::Climb,
                 uav,

@@ -17,9 +17,12 @@
 //! only if its cost is strictly lower. (The paper's pseudo-code writes that assignment
 //! backwards, and runs the substitution in the `else` branch of `c_i > d`; we follow its
 //! prose.) An improved pbest_i is offered to gbest. Cost: at most D evaluations per
-//! trigger, at most one trigger per particle every d + 1 iterations, i.e. up to
-//! N D / (d + 1) extra evaluations per iteration (1250 for N = 50, D = 150, d = 5) on top
-//! of N; in practice fewer, since dimensions already equal to gbest cost nothing.
+//! substitution pass. Left unbounded, passes fire for about one particle in d + 1 at every
+//! iteration (up to N D / (d + 1) = 1250 extra evaluations per iteration for N = 50,
+//! D = 150, d = 5: twenty times PSO's budget). The paper gives no figure, so we bound it:
+//! at most `max_passes_per_iteration` passes per iteration (default 1, at most D extra
+//! evaluations, typically far fewer since dimensions equal to gbest cost nothing); a
+//! stagnant particle that finds the quota spent keeps its counter and goes next time.
 //!
 //! **Exemplar mode** (Xu et al. 2019, "Particle swarm optimization based on dimensional
 //! learning strategy", Swarm Evol. Comput. 45:33-51; their public code wucg/TSLPSO). Every
@@ -104,6 +107,8 @@ pub struct DlsParams {
     /// Stagnation threshold d: substitution runs when a particle's counter exceeds it (5;
     /// the paper gives no value). Paper mode only.
     pub stagnation: usize,
+    /// Substitution passes allowed per iteration (1). Paper mode only.
+    pub max_passes_per_iteration: usize,
     /// Share of the swarm taken as a particle's nearest neighbours when it is itself gbest
     /// (0.2, TSLPSO's `floor(0.2 N)`; at least one). Exemplar mode only.
     pub neighbour_fraction: f64,
@@ -115,6 +120,7 @@ impl DlsParams {
         mode: DlsMode::Paper,
         lambda: 0.5,
         stagnation: 5,
+        max_passes_per_iteration: 1,
         neighbour_fraction: 0.2,
     };
 
@@ -365,6 +371,7 @@ impl Optimizer for DlsSmpso {
     fn step(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng) {
         let bounds = ev.bounds();
         let dim = self.swarm.dim;
+        let mut passes = 0;
         for i in 0..self.swarm.n {
             let improved = match self.params.mode {
                 DlsMode::Paper => {
@@ -383,7 +390,10 @@ impl Optimizer for DlsSmpso {
                 DlsMode::Paper if improved => self.stagnation[i] = 0,
                 DlsMode::Paper => {
                     self.stagnation[i] += 1;
-                    if self.stagnation[i] > self.params.stagnation {
+                    if self.stagnation[i] > self.params.stagnation
+                        && passes < self.params.max_passes_per_iteration
+                    {
+                        passes += 1;
                         self.stagnation[i] = 0;
                         self.substitute(i, ev);
                     }

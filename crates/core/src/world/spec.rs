@@ -153,7 +153,7 @@ impl Default for UavSpec {
             cruise_speed: 15.0,
             payload_kg: 0.5,
             max_payload_kg: 1.0,
-            battery_wh: 4.5,
+            battery_wh: 6.0,
             reserve: 0.2,
             size: 1.0,
         }

@@ -1,0 +1,178 @@
+//! `swarmplan plan`: plan a scenario with one algorithm, print the result, write
+//! `plan.json` and `convergence.csv` into `--out`.
+
+use std::io::Write as _;
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use clap::Args;
+use swarmplan_core::encoding::EncodingKind;
+use swarmplan_core::optim::{Algorithm, AlgorithmParams, Budget, IterationRecord};
+use swarmplan_core::run::{run, RunRequest};
+use swarmplan_io::plan_file::{assessment_json, json_number, plan_file};
+
+use crate::render;
+use crate::ScenarioArgs;
+
+#[derive(Debug, Args)]
+pub struct PlanArgs {
+    #[command(flatten)]
+    pub scenario: ScenarioArgs,
+    /// Algorithm: pso, apso, spso, dls-smpso, qpso, gwo, abc.
+    #[arg(long = "algo", default_value = "dls-smpso")]
+    pub algorithm: Algorithm,
+    /// Encoding (default: the algorithm's paper pairing): spherical, cartesian, angle.
+    #[arg(long)]
+    pub encoding: Option<EncodingKind>,
+    /// Seed of the run (default: the scenario's `planning.seed`).
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Iterations (default 200, the paper's; ignored when only --evaluations is given).
+    #[arg(long)]
+    pub iterations: Option<usize>,
+    /// Population size (default 50, the paper's).
+    #[arg(long)]
+    pub population: Option<usize>,
+    /// Evaluation budget (fair comparisons); with --iterations, whichever ends first.
+    #[arg(long)]
+    pub evaluations: Option<u64>,
+    /// Algorithm parameters as TOML (sections pso, apso, spso, dls_smpso, qpso, gwo, abc).
+    #[arg(long)]
+    pub params: Option<PathBuf>,
+    /// Output folder for plan.json and convergence.csv.
+    #[arg(long, default_value = "out")]
+    pub out: PathBuf,
+    /// Print one JSON object on stdout instead of tables.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Algorithm parameters from a TOML file, then the population flag.
+pub fn load_params(path: Option<&PathBuf>, population: Option<usize>) -> Result<AlgorithmParams> {
+    let mut params = match path {
+        None => AlgorithmParams::default(),
+        Some(p) => {
+            let text = std::fs::read_to_string(p)
+                .with_context(|| format!("{}: cannot read", p.display()))?;
+            toml::from_str(&text)
+                .map_err(|e| anyhow::anyhow!("{}: {}", p.display(), e.to_string().trim_end()))?
+        }
+    };
+    if let Some(n) = population {
+        anyhow::ensure!(n >= 4, "--population: expected at least 4, got {n}");
+        params.set_population(n);
+    }
+    params.validate().map_err(|e| {
+        anyhow::anyhow!(
+            "{}: {e}",
+            path.map_or("parameters".into(), |p| p.display().to_string())
+        )
+    })?;
+    Ok(params)
+}
+
+/// The budget from the flags: iterations (default 200) and / or evaluations.
+pub fn budget(iterations: Option<usize>, evaluations: Option<u64>) -> Result<Budget> {
+    if let Some(0) = iterations {
+        anyhow::bail!("--iterations: expected at least 1, got 0");
+    }
+    if let Some(0) = evaluations {
+        anyhow::bail!("--evaluations: expected at least 1, got 0");
+    }
+    Ok(match (iterations, evaluations) {
+        (None, None) => Budget::DEFAULT,
+        (i, e) => Budget {
+            iterations: i,
+            evaluations: e,
+        },
+    })
+}
+
+pub fn run_command(args: &PlanArgs) -> Result<()> {
+    let world = super::load_world(&args.scenario)?;
+    let params = load_params(args.params.as_ref(), args.population)?;
+    let req = RunRequest {
+        algorithm: args.algorithm,
+        encoding: args.encoding,
+        params,
+        budget: budget(args.iterations, args.evaluations)?,
+        seed: args.seed.unwrap_or(world.spec.planning.seed),
+    };
+    if !args.json {
+        eprintln!(
+            "planning {} with {} (seed {}, {} iterations max, population {})",
+            world.spec.name,
+            req.algorithm,
+            req.seed,
+            req.budget
+                .max_iterations()
+                .map_or("no".into(), |m| m.to_string()),
+            req.params.population(req.algorithm)
+        );
+    }
+    let mut observer = |_: &IterationRecord| {};
+    let result = run(&world, &req, &mut observer);
+
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("{}: cannot create", args.out.display()))?;
+    let plan_path = args.out.join("plan.json");
+    let pf = plan_file(&world, &result.plan);
+    std::fs::write(&plan_path, serde_json::to_string_pretty(&pf)? + "\n")
+        .with_context(|| format!("{}: cannot write", plan_path.display()))?;
+    let conv_path = args.out.join("convergence.csv");
+    let mut csv = std::io::BufWriter::new(
+        std::fs::File::create(&conv_path)
+            .with_context(|| format!("{}: cannot write", conv_path.display()))?,
+    );
+    writeln!(
+        csv,
+        "iteration,evaluations,best_cost,best_cost_per_uav,best_violation"
+    )?;
+    let n = world.uav_count() as f64;
+    for r in &result.outcome.trace {
+        writeln!(
+            csv,
+            "{},{},{},{},{}",
+            r.iteration,
+            r.evaluations,
+            r.best_cost,
+            r.best_cost / n,
+            r.best_violation
+        )?;
+    }
+    csv.flush()?;
+
+    let a = &result.assessment;
+    if args.json {
+        let mut obj = assessment_json(a);
+        let o = obj
+            .as_object_mut()
+            .expect("assessment_json returns an object");
+        o.insert("scenario".into(), world.spec.name.clone().into());
+        o.insert("algorithm".into(), result.algorithm.name().into());
+        o.insert("encoding".into(), result.encoding.name().into());
+        o.insert("seed".into(), result.seed.into());
+        o.insert("evaluations".into(), result.outcome.evaluations.into());
+        o.insert("iterations".into(), result.outcome.iterations.into());
+        o.insert("seconds".into(), json_number(result.seconds));
+        o.insert("plan".into(), serde_json::to_value(&pf)?);
+        o.insert(
+            "files".into(),
+            serde_json::json!({"plan": plan_path, "convergence": conv_path}),
+        );
+        println!("{}", serde_json::to_string_pretty(&obj)?);
+    } else {
+        print!("{}", render::assessment(&world, a));
+        println!(
+            "\nalgorithm {} on {} encoding, seed {}: {} evaluations, {} iterations, {:.3} s",
+            result.algorithm,
+            result.encoding,
+            result.seed,
+            result.outcome.evaluations,
+            result.outcome.iterations,
+            result.seconds
+        );
+        println!("wrote {} and {}", plan_path.display(), conv_path.display());
+    }
+    Ok(())
+}

@@ -1,0 +1,81 @@
+//! One planning run: an algorithm on an encoding of a world, from a seed, to an assessed
+//! plan. The CLI's `plan` and the experiment runner both go through here, so a run is the
+//! same thing wherever it happens.
+
+use std::time::Instant;
+
+use serde::{Deserialize, Serialize};
+
+use crate::cost::Assessment;
+use crate::encoding::EncodingKind;
+use crate::optim::{build, solve, Algorithm, AlgorithmParams, Budget, IterationRecord, Outcome};
+use crate::plan::Plan;
+use crate::planning::PlanningProblem;
+use crate::rng::rng_from_seed;
+use crate::world::World;
+
+/// The encoding each algorithm uses in the paper's comparison.
+#[must_use]
+pub fn default_encoding(alg: Algorithm) -> EncodingKind {
+    match alg {
+        Algorithm::Spso | Algorithm::DlsSmpso => EncodingKind::Spherical,
+        Algorithm::Apso => EncodingKind::Angle,
+        Algorithm::Pso | Algorithm::Qpso | Algorithm::Gwo | Algorithm::Abc => {
+            EncodingKind::Cartesian
+        }
+    }
+}
+
+/// What to run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunRequest {
+    pub algorithm: Algorithm,
+    /// `None`: the algorithm's paper pairing ([`default_encoding`]).
+    pub encoding: Option<EncodingKind>,
+    pub params: AlgorithmParams,
+    pub budget: Budget,
+    pub seed: u64,
+}
+
+/// What a run produced.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct RunResult {
+    pub algorithm: Algorithm,
+    pub encoding: EncodingKind,
+    pub seed: u64,
+    pub outcome: Outcome,
+    pub plan: Plan,
+    /// Full assessment of the best plan, with its violations.
+    pub assessment: Assessment,
+    /// Wall time of the optimisation (assessment excluded), seconds.
+    pub seconds: f64,
+}
+
+/// Runs `req` on `world`, calling `observer` after initialisation and every iteration.
+#[must_use]
+pub fn run(
+    world: &World,
+    req: &RunRequest,
+    observer: &mut dyn FnMut(&IterationRecord),
+) -> RunResult {
+    let encoding = req
+        .encoding
+        .unwrap_or_else(|| default_encoding(req.algorithm));
+    let problem = PlanningProblem::new(world, encoding);
+    let mut optimizer = build(req.algorithm, &req.params);
+    let mut rng = rng_from_seed(req.seed);
+    let start = Instant::now();
+    let outcome = solve(&problem, optimizer.as_mut(), req.budget, &mut rng, observer);
+    let seconds = start.elapsed().as_secs_f64();
+    let plan = problem.decode(&outcome.best_x);
+    let assessment = crate::cost::assess(world, &plan, true);
+    RunResult {
+        algorithm: req.algorithm,
+        encoding,
+        seed: req.seed,
+        outcome,
+        plan,
+        assessment,
+        seconds,
+    }
+}
