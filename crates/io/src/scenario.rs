@@ -7,7 +7,7 @@
 
 use std::path::{Path, PathBuf};
 
-use swarmplan_core::world::procedural::procedural_terrain;
+use swarmplan_core::world::procedural::try_procedural_terrain;
 use swarmplan_core::world::spec::{ScenarioSpec, TerrainFrame};
 use swarmplan_core::world::{World, WorldError};
 use thiserror::Error;
@@ -134,7 +134,10 @@ pub fn build_world(
         None => Some(loaded.base_dir.join(&t.source)),
     };
     let terrain = match &source {
-        None => procedural_terrain(&t.procedural),
+        None => try_procedural_terrain(&t.procedural).map_err(|e| ScenarioError::Procedural {
+            origin: loaded.origin.clone(),
+            message: e.to_string(),
+        })?,
         Some(path) => {
             let opts = DemOptions {
                 frame: match t.frame {

@@ -246,16 +246,22 @@ impl Terrain {
     /// long segment costs a few look-ups instead of one per sample.
     #[must_use]
     pub fn segment_clears(&self, a: glam::DVec3, b: glam::DVec3, margin: f64, step: f64) -> bool {
+        // Non-finite ends never clear; the depth bound only matters for absurd inputs
+        // (2^40 halvings resolve any finite segment far below a millimetre).
+        a.is_finite() && b.is_finite() && self.clears(a, b, margin, step, 40)
+    }
+
+    fn clears(&self, a: glam::DVec3, b: glam::DVec3, margin: f64, step: f64, depth: u32) -> bool {
         if a.z.min(b.z) - margin > self.max_in_rect(a.x, a.y, b.x, b.y) {
             return true;
         }
-        if (b - a).truncate().length() <= step {
+        if depth == 0 || (b - a).truncate().length() <= step {
             return true;
         }
         let m = a.lerp(b, 0.5);
         m.z - margin > self.height(m.x, m.y)
-            && self.segment_clears(a, m, margin, step)
-            && self.segment_clears(m, b, margin, step)
+            && self.clears(a, m, margin, step, depth - 1)
+            && self.clears(m, b, margin, step, depth - 1)
     }
 }
 
