@@ -23,23 +23,14 @@ pub struct Kinematics {
     pub climb_up: f64,
 }
 
-/// Wraps an angle difference into (-pi, pi].
-#[must_use]
-pub fn wrap_angle(a: f64) -> f64 {
-    use std::f64::consts::{PI, TAU};
-    let r = (a + PI).rem_euclid(TAU) - PI;
-    if r == -PI {
-        PI
-    } else {
-        r
-    }
-}
-
-/// Computes the sums for UAV `uav` and reports turn and climb violations.
+/// Computes the sums for UAV `uav` and reports turn and climb violations. Without `sums`
+/// (the `spso` preset weighs them 0) the turn sums are left at 0 and only the limits are
+/// checked, which saves an `atan2` per waypoint.
 pub fn kinematics(
     world: &World,
     uav: usize,
     tp: &TimedPath,
+    sums: bool,
     sink: &mut ViolationSink,
 ) -> Kinematics {
     let spec = &world.spec.uavs[uav];
@@ -52,7 +43,8 @@ pub fn kinematics(
     };
     let p = &tp.abs;
     let mut k = Kinematics::default();
-    let mut last_heading: Option<f64> = None;
+    let mut last_heading: Option<(f64, f64, f64)> = None;
+    let cos_turn = max_turn.cos();
     for s in 0..p.len().saturating_sub(1) {
         let d = p[s + 1] - p[s];
         k.vertical_abs += d.z.abs();
@@ -84,12 +76,20 @@ pub fn kinematics(
         if horizontal == 0.0 {
             continue;
         }
-        let heading = d.y.atan2(d.x);
-        if let Some(prev) = last_heading {
-            let turn = wrap_angle(heading - prev);
-            k.turn_abs += turn.abs();
+        if let Some((px, py, ph)) = last_heading {
+            // The unsigned angle between consecutive headings; atan2 only when a sum needs
+            // it or the limit is broken (cos turn < cos limit, tested without it).
+            let cross = (px * d.y - py * d.x).abs();
+            let dot = px * d.x + py * d.y;
+            let broken = dot < cos_turn * ph * horizontal;
+            let turn = if sums || broken {
+                cross.atan2(dot)
+            } else {
+                0.0
+            };
+            k.turn_abs += turn;
             k.turn_sq += turn * turn;
-            if turn.abs() > max_turn + 1e-9 {
+            if broken && turn > max_turn + 1e-9 {
                 sink.add(
                     ViolationKind::Turn,
                     uav,
@@ -110,21 +110,7 @@ pub fn kinematics(
                 );
             }
         }
-        last_heading = Some(heading);
+        last_heading = Some((d.x, d.y, horizontal));
     }
     k
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use std::f64::consts::PI;
-
-    #[test]
-    fn wrap_keeps_angles_in_half_open_circle() {
-        assert!((wrap_angle(3.0 * PI / 2.0) + PI / 2.0).abs() < 1e-12);
-        assert!((wrap_angle(-3.0 * PI / 2.0) - PI / 2.0).abs() < 1e-12);
-        assert!((wrap_angle(PI) - PI).abs() < 1e-12);
-        assert!((wrap_angle(-PI) - PI).abs() < 1e-12);
-    }
 }

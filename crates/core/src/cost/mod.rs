@@ -249,7 +249,7 @@ pub fn assess_into(
     for (u, path) in plan.uavs.iter().enumerate() {
         let tp = &scratch.timed.paths[u];
         let spso_terms = spso::spso_terms(world, u, path, tp, spso_preset, sink);
-        let kin = kinematics::kinematics(world, u, tp, sink);
+        let kin = kinematics::kinematics(world, u, tp, !spso_preset, sink);
         let min_clearance = clearance::check_clearance(world, u, path, tp, exact, sink);
         let safety = safety::safety_term(world, u, tp, sink);
         let joules = energy::physical_energy(world, u, tp, &kin);

@@ -151,6 +151,20 @@ fn altitude_term(
     j3
 }
 
+fn norm2(v: (f64, f64)) -> f64 {
+    (v.0 * v.0 + v.1 * v.1).sqrt()
+}
+
+/// (horizontal, vertical) of a segment for the climb angle; atan2(0, 0) = 0 in SPSO, so a
+/// null vector stands for a level one.
+fn climb_vector(h: f64, v: f64) -> (f64, f64) {
+    if h == 0.0 && v == 0.0 {
+        (1.0, 0.0)
+    } else {
+        (h, v)
+    }
+}
+
 /// SPSO's J4 on the waypoints (xy from `path`, absolute z from `abs`).
 #[must_use]
 pub fn smoothness_term(path: &Path, abs: &[DVec3]) -> f64 {
@@ -173,21 +187,25 @@ pub fn smoothness_term(path: &Path, abs: &[DVec3]) -> f64 {
             j += 1;
             s2 = proj(j);
         }
-        let climb1 = (abs[i + 1].z - abs[i].z)
-            .atan2(s1.0.hypot(s1.1))
-            .to_degrees();
-        let climb2 = (abs[i + 2].z - abs[i + 1].z)
-            .atan2(s2.0.hypot(s2.1))
-            .to_degrees();
+        // The angles only count beyond 45 deg, so each atan2 is taken only then: a turn
+        // exceeds 45 deg iff |cross| > dot, and so does a change of climb angle, computed
+        // as the angle between the (horizontal, vertical) vectors of the two segments.
         let cross = (s1.0 * s2.1 - s1.1 * s2.0).abs();
         let dot = s1.0 * s2.0 + s1.1 * s2.1;
-        let turn = cross.atan2(dot).to_degrees();
-        if turn.abs() > SPSO_SMOOTH_LIMIT_DEG {
-            j4 += turn.abs();
+        if cross > dot {
+            let turn = cross.atan2(dot).to_degrees();
+            if turn > SPSO_SMOOTH_LIMIT_DEG {
+                j4 += turn;
+            }
         }
-        let dclimb = (climb2 - climb1).abs();
-        if dclimb > SPSO_SMOOTH_LIMIT_DEG {
-            j4 += dclimb;
+        let (h1, v1) = climb_vector(norm2(s1), abs[i + 1].z - abs[i].z);
+        let (h2, v2) = climb_vector(norm2(s2), abs[i + 2].z - abs[i + 1].z);
+        let (c, d) = (h1 * v2 - v1 * h2, h1 * h2 + v1 * v2);
+        if c.abs() > d {
+            let dclimb = (v2.atan2(h2) - v1.atan2(h1)).abs().to_degrees();
+            if dclimb > SPSO_SMOOTH_LIMIT_DEG {
+                j4 += dclimb;
+            }
         }
     }
     j4

@@ -115,7 +115,8 @@ impl World {
             });
         }
         let channel = Channel::new(&spec.communication);
-        if spec.communication.line_of_sight {
+        let checks_comm = spec.communication.requirement != spec::CommRequirement::None;
+        if spec.communication.line_of_sight && checks_comm {
             let (bx, by) = (spec.map.x, spec.map.y);
             let step = spec.communication.line_of_sight_step;
             for g in &mut ground_nodes {

@@ -348,8 +348,6 @@ pub struct TimingSpec {
     pub separation: f64,
     /// Radius of the take-off and landing zones where separation is not required, m (30).
     pub zone_radius: f64,
-    /// Sampling interval of the separation check, seconds (0.5).
-    pub separation_step: f64,
 }
 
 impl Default for TimingSpec {
@@ -358,7 +356,6 @@ impl Default for TimingSpec {
             policy: TimingPolicy::CommonArrival,
             separation: 10.0,
             zone_radius: 30.0,
-            separation_step: 0.5,
         }
     }
 }

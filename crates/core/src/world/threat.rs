@@ -30,14 +30,16 @@ pub fn point_segment_distance(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f6
     let (apx, apy) = (p.0 - a.0, p.1 - a.1);
     let len2 = abx * abx + aby * aby;
     if len2 == 0.0 {
-        return apx.hypot(apy);
+        return (apx * apx + apy * apy).sqrt();
     }
     let (bpx, bpy) = (p.0 - b.0, p.1 - b.1);
     // Inside the slab of the segment: perpendicular distance; else nearest end (as DistP2S).
     if (abx * apx + aby * apy) >= 0.0 && (-abx * bpx - aby * bpy) >= 0.0 {
         (abx * apy - aby * apx).abs() / len2.sqrt()
     } else {
-        apx.hypot(apy).min(bpx.hypot(bpy))
+        (apx * apx + apy * apy)
+            .sqrt()
+            .min((bpx * bpx + bpy * bpy).sqrt())
     }
 }
 

@@ -189,7 +189,6 @@ impl ScenarioSpec {
         let t = &self.timing;
         non_negative("timing.separation", t.separation)?;
         non_negative("timing.zone_radius", t.zone_radius)?;
-        positive("timing.separation_step", t.separation_step)?;
         if self.planning.waypoints == 0 || self.planning.waypoints > 1000 {
             return Err(err(
                 "planning.waypoints",

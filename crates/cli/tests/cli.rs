@@ -1,0 +1,222 @@
+//! The command-line interface, end to end on the `tiny` scenario: the stable interfaces
+//! that scripts rely on (`scenario`, `evaluate --json`, `plan --json`, the files written)
+//! and clear errors for bad input.
+
+#![allow(clippy::unwrap_used)] // tests fail loudly by design
+
+use assert_cmd::Command;
+use predicates::prelude::*;
+
+fn swarmplan() -> Command {
+    Command::cargo_bin("swarmplan").unwrap()
+}
+
+fn json(out: &[u8]) -> serde_json::Value {
+    serde_json::from_slice(out).unwrap()
+}
+
+#[test]
+fn scenario_list_names_every_builtin() {
+    let out = swarmplan().args(["scenario", "list"]).assert().success();
+    let text = String::from_utf8(out.get_output().stdout.clone()).unwrap();
+    for name in [
+        "paper-case1",
+        "paper-case2",
+        "spso-case1",
+        "spso-case2",
+        "tiny",
+    ] {
+        assert!(text.contains(name), "{text}");
+    }
+}
+
+#[test]
+fn scenario_show_round_trips_through_a_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let shown = swarmplan()
+        .args(["scenario", "show", "paper-case1"])
+        .assert()
+        .success();
+    let toml_text = shown.get_output().stdout.clone();
+    let path = dir.path().join("my.toml");
+    std::fs::write(&path, &toml_text).unwrap();
+    let again = swarmplan()
+        .args(["scenario", "show", path.to_str().unwrap()])
+        .assert()
+        .success();
+    assert_eq!(again.get_output().stdout, toml_text);
+}
+
+#[test]
+fn plan_writes_files_that_evaluate_reads_back_with_the_same_cost() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = swarmplan()
+        .args([
+            "plan",
+            "--scenario",
+            "tiny",
+            "--iterations",
+            "30",
+            "--population",
+            "20",
+            "--seed",
+            "7",
+            "--json",
+            "--out",
+        ])
+        .arg(dir.path())
+        .assert()
+        .success();
+    let planned = json(&out.get_output().stdout);
+    for key in [
+        "seed",
+        "algorithm",
+        "feasible",
+        "cost",
+        "evaluations",
+        "seconds",
+        "plan",
+    ] {
+        assert!(planned.get(key).is_some(), "missing {key}");
+    }
+    assert_eq!(planned["seed"], 7);
+    assert_eq!(planned["algorithm"], "dls-smpso");
+    let plan_path = dir.path().join("plan.json");
+    assert!(dir.path().join("convergence.csv").exists());
+    let conv = std::fs::read_to_string(dir.path().join("convergence.csv")).unwrap();
+    assert_eq!(conv.lines().count(), 1 + 31, "header + iterations 0..=30");
+
+    let out = swarmplan()
+        .args(["evaluate", "--scenario", "tiny", "--json", "--plan"])
+        .arg(&plan_path)
+        .assert()
+        .success();
+    let evaluated = json(&out.get_output().stdout);
+    let (a, b) = (
+        planned["cost"]["total"].as_f64().unwrap(),
+        evaluated["cost"]["total"].as_f64().unwrap(),
+    );
+    assert!((a - b).abs() <= 1e-9 * a.abs().max(1.0), "{a} vs {b}");
+    assert_eq!(planned["feasible"], evaluated["feasible"]);
+    assert!(evaluated["violations"].is_array());
+    assert!(evaluated["cost"]["terms"]["length"].as_f64().unwrap() > 0.0);
+}
+
+#[test]
+fn same_seed_gives_the_same_plan() {
+    let run = || {
+        let dir = tempfile::tempdir().unwrap();
+        let out = swarmplan()
+            .args([
+                "plan",
+                "--scenario",
+                "tiny",
+                "--iterations",
+                "15",
+                "--population",
+                "12",
+                "--seed",
+                "3",
+                "--json",
+                "--out",
+            ])
+            .arg(dir.path())
+            .assert()
+            .success();
+        let mut v = json(&out.get_output().stdout);
+        v.as_object_mut().unwrap().remove("seconds");
+        v.as_object_mut().unwrap().remove("files");
+        v
+    };
+    assert_eq!(run(), run());
+}
+
+#[test]
+fn evaluate_reports_violations_of_a_straight_plan() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("straight.json");
+    // Both UAVs fly the same straight line: through a threat, and together.
+    let plan = r#"{"uavs": [
+        {"waypoints": [[30, 30, 60], [120, 80, 60], [270, 170, 60]]},
+        {"waypoints": [[30, 30, 60], [120, 80, 60], [270, 170, 60]]}]}"#;
+    std::fs::write(&path, plan).unwrap();
+    let out = swarmplan()
+        .args(["evaluate", "--scenario", "tiny", "--json", "--plan"])
+        .arg(&path)
+        .assert()
+        .success();
+    let v = json(&out.get_output().stdout);
+    assert_eq!(v["feasible"], false);
+    let kinds: Vec<&str> = v["violations"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x["kind"].as_str().unwrap())
+        .collect();
+    assert!(
+        kinds.contains(&"threat") && kinds.contains(&"separation"),
+        "{kinds:?}"
+    );
+    // Tables for humans name the violations too.
+    swarmplan()
+        .args(["evaluate", "--scenario", "tiny", "--plan"])
+        .arg(&path)
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("feasible: no").and(predicate::str::contains("threat")));
+}
+
+#[test]
+fn bad_input_gets_a_clear_error_and_status_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("one.json");
+    std::fs::write(
+        &path,
+        r#"{"uavs": [{"waypoints": [[30, 30, 60], [270, 170, 60]]}]}"#,
+    )
+    .unwrap();
+    swarmplan()
+        .args(["evaluate", "--scenario", "tiny", "--plan"])
+        .arg(&path)
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("one.json").and(predicate::str::contains("2 UAVs")));
+    swarmplan()
+        .args(["evaluate", "--scenario", "no-such", "--plan"])
+        .arg(&path)
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("no-such").and(predicate::str::contains("paper-case1")));
+    let bad = dir.path().join("bad.toml");
+    let text = String::from_utf8(
+        swarmplan()
+            .args(["scenario", "show", "tiny"])
+            .output()
+            .unwrap()
+            .stdout,
+    )
+    .unwrap()
+    .replacen("range = ", "range = -", 1);
+    std::fs::write(&bad, text).unwrap();
+    swarmplan()
+        .args(["scenario", "show", bad.to_str().unwrap()])
+        .assert()
+        .code(2)
+        .stderr(
+            predicate::str::contains("bad.toml")
+                .and(predicate::str::contains("communication.range")),
+        );
+    swarmplan()
+        .args([
+            "plan",
+            "--scenario",
+            "tiny",
+            "--terrain",
+            "/nonexistent/dem.tif",
+            "--out",
+        ])
+        .arg(dir.path())
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("/nonexistent/dem.tif"));
+}

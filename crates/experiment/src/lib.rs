@@ -1,0 +1,6 @@
+//! swarmplan-experiment: repeated planning runs and what they show. An experiment is a
+//! matrix (scenarios x algorithms x parameter sets x runs); every run is one flat record in
+//! `runs.jsonl`, and statistics are a separate step over records (as OMPL's benchmark
+//! tool does), so shards and resumed runs aggregate the same way.
+
+pub mod stats;

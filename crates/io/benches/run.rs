@@ -1,0 +1,55 @@
+//! Whole runs at paper settings (population 50, 200 iterations). Targets (issue 3): one
+//! single-UAV SPSO run with the `spso` objective <= 20 ms; one DLS-SMPSO run of a 5-UAV
+//! paper case <= 0.25 s. SPSO's DEM is used when `../shared/data/spso` has it, else the
+//! procedural terrain.
+
+use std::path::PathBuf;
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use swarmplan_core::optim::{Algorithm, AlgorithmParams, Budget};
+use swarmplan_core::run::{run, RunRequest};
+use swarmplan_io::scenario::{build_world, load_spec};
+
+fn request(algorithm: Algorithm, seed: u64) -> RunRequest {
+    RunRequest {
+        algorithm,
+        encoding: None,
+        params: AlgorithmParams::default(),
+        budget: Budget::iterations(200),
+        seed,
+    }
+}
+
+fn bench(c: &mut Criterion) {
+    let dem = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/data/spso/ChrismasTerrain.tif");
+    let dem = dem.exists().then_some(dem);
+    let mut group = c.benchmark_group("run");
+    group.sample_size(10);
+    let spso =
+        build_world(&load_spec("spso-case1").expect("built-in"), dem.as_deref()).expect("world");
+    let mut seed = 0;
+    group.bench_function("spso/spso-case1", |b| {
+        b.iter(|| {
+            seed += 1;
+            run(&spso, &request(Algorithm::Spso, seed), &mut |_| {})
+                .assessment
+                .total
+        });
+    });
+    for case in ["paper-case1", "paper-case2"] {
+        let world = build_world(&load_spec(case).expect("built-in"), None).expect("world");
+        group.bench_function(format!("dls-smpso/{case}"), |b| {
+            b.iter(|| {
+                seed += 1;
+                run(&world, &request(Algorithm::DlsSmpso, seed), &mut |_| {})
+                    .assessment
+                    .total
+            });
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
