@@ -29,6 +29,10 @@ enum Command {
     Plan(commands::plan::PlanArgs),
     /// Cost breakdown and every violation of a plan file.
     Evaluate(commands::evaluate::EvaluateArgs),
+    /// Run an experiment (default: the paper's Tables 4-5: both cases, 7 algorithms, 200 runs).
+    Bench(commands::bench::BenchArgs),
+    /// Merge the folders of a sharded experiment into one summary.
+    Aggregate(commands::bench::AggregateArgs),
 }
 
 #[derive(Debug, Subcommand)]
@@ -62,6 +66,8 @@ fn main() -> ExitCode {
         }
         Command::Plan(args) => commands::plan::run_command(&args),
         Command::Evaluate(args) => commands::evaluate::run(&args),
+        Command::Bench(args) => commands::bench::run_bench(&args),
+        Command::Aggregate(args) => commands::bench::run_aggregate(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,6 +1,12 @@
 //! swarmplan-experiment: repeated planning runs and what they show. An experiment is a
-//! matrix (scenarios x algorithms x parameter sets x runs); every run is one flat record in
+//! matrix (scenarios x parameter sets x algorithms x runs); every run is one flat record in
 //! `runs.jsonl`, and statistics are a separate step over records (as OMPL's benchmark
 //! tool does), so shards and resumed runs aggregate the same way.
 
+pub mod aggregate;
+pub mod matrix;
+pub mod record;
+pub mod runner;
 pub mod stats;
+pub mod store;
+pub mod summary;

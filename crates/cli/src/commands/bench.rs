@@ -1,0 +1,215 @@
+//! `swarmplan bench` (run an experiment: by default the paper's Tables 4-5) and
+//! `swarmplan aggregate` (merge shard folders into one summary).
+
+use std::io::IsTerminal as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use swarmplan_core::optim::Algorithm;
+use swarmplan_experiment::aggregate::aggregate;
+use swarmplan_experiment::matrix::{ExperimentSpec, ParamSet, Shard};
+use swarmplan_experiment::record::RunRecord;
+use swarmplan_experiment::runner::{run_experiment, RunnerOptions};
+use swarmplan_experiment::summary::{csv, markdown, summarize_records, ExperimentSummary};
+
+use super::plan::{budget, load_params};
+
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    /// Experiment file (TOML: master_seed, runs, scenarios, algorithms, [[param_sets]],
+    /// [budget], terrain); flags below override its fields.
+    #[arg(long)]
+    pub experiment: Option<PathBuf>,
+    /// Scenarios, comma-separated (default: paper-case1,paper-case2).
+    #[arg(long, value_delimiter = ',')]
+    pub scenarios: Option<Vec<String>>,
+    /// Algorithms, comma-separated (default: the paper's six plus SPSO).
+    #[arg(long = "algos", value_delimiter = ',')]
+    pub algorithms: Option<Vec<Algorithm>>,
+    /// Runs per scenario and algorithm (default 200).
+    #[arg(long)]
+    pub runs: Option<usize>,
+    /// Master seed (default 1); every run's seed derives from it.
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Worker threads (default: one per core).
+    #[arg(long, default_value_t = 0)]
+    pub threads: usize,
+    /// Output folder.
+    #[arg(long, default_value = "out/bench")]
+    pub out: PathBuf,
+    /// Iterations per run (default 200).
+    #[arg(long)]
+    pub iterations: Option<usize>,
+    /// Population size (default 50).
+    #[arg(long)]
+    pub population: Option<usize>,
+    /// Evaluation budget per run.
+    #[arg(long)]
+    pub evaluations: Option<u64>,
+    /// Algorithm parameters (TOML, as for `plan`), used as the parameter set `custom`.
+    #[arg(long)]
+    pub params: Option<PathBuf>,
+    /// GeoTIFF or ESRI ASCII grid replacing every scenario's terrain.
+    #[arg(long)]
+    pub terrain: Option<PathBuf>,
+    /// Run only slice K of N of the matrix (for clusters; merge with `aggregate`).
+    #[arg(long)]
+    pub shard: Option<String>,
+    /// Continue an interrupted experiment in --out without repeating or losing a run.
+    #[arg(long)]
+    pub resume: bool,
+}
+
+#[derive(Debug, Args)]
+pub struct AggregateArgs {
+    /// Folders written by `bench` (e.g. one per shard).
+    #[arg(required = true)]
+    pub dirs: Vec<PathBuf>,
+    /// Where to write summary.md, summary.csv and summary.json.
+    #[arg(long, default_value = "out/aggregate")]
+    pub out: PathBuf,
+}
+
+fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
+    let mut spec = match &args.experiment {
+        Some(p) => {
+            let text = std::fs::read_to_string(p)
+                .with_context(|| format!("{}: cannot read", p.display()))?;
+            toml::from_str::<ExperimentSpec>(&text)
+                .map_err(|e| anyhow::anyhow!("{}: {}", p.display(), e.to_string().trim_end()))?
+        }
+        None => ExperimentSpec::paper(1),
+    };
+    if let Some(s) = &args.scenarios {
+        spec.scenarios.clone_from(s);
+    }
+    if let Some(a) = &args.algorithms {
+        spec.algorithms.clone_from(a);
+    }
+    if let Some(r) = args.runs {
+        spec.runs = r;
+    }
+    if let Some(s) = args.seed {
+        spec.master_seed = s;
+    }
+    if args.iterations.is_some() || args.evaluations.is_some() {
+        spec.budget = budget(args.iterations, args.evaluations)?;
+    }
+    if args.params.is_some() || args.population.is_some() {
+        let params = load_params(args.params.as_ref(), args.population)?;
+        let name = if args.params.is_some() {
+            "custom"
+        } else {
+            "paper"
+        };
+        spec.param_sets = vec![ParamSet {
+            name: name.into(),
+            encoding: None,
+            params,
+        }];
+    }
+    if let Some(t) = &args.terrain {
+        spec.terrain = Some(t.display().to_string());
+    }
+    spec.validate()?;
+    Ok(spec)
+}
+
+pub fn run_bench(args: &BenchArgs) -> Result<()> {
+    let spec = experiment(args)?;
+    let shard = args.shard.as_deref().map(Shard::parse).transpose()?;
+    let opts = RunnerOptions {
+        threads: args.threads,
+        shard,
+        resume: args.resume,
+    };
+    let threads = if args.threads == 0 {
+        std::thread::available_parallelism().map_or(1, usize::from)
+    } else {
+        args.threads
+    };
+    eprintln!(
+        "bench: {} scenarios x {} algorithms x {} parameter sets x {} runs = {} runs, master seed {}, {} threads{}, into {}",
+        spec.scenarios.len(),
+        spec.algorithms.len(),
+        spec.param_sets.len(),
+        spec.runs,
+        spec.size(),
+        spec.master_seed,
+        threads,
+        shard.map_or(String::new(), |s| format!(", shard {}/{}", s.index, s.count)),
+        args.out.display()
+    );
+    let bar = if std::io::stderr().is_terminal() {
+        ProgressBar::new(0)
+    } else {
+        ProgressBar::hidden()
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} runs  {per_sec}  ETA {eta}  {msg}")
+            .expect("a valid template"),
+    );
+    let started = Instant::now();
+    let mut start = |pending: usize| bar.set_length(pending as u64);
+    let done = |r: &RunRecord| {
+        bar.set_message(format!("{} {} #{}", r.scenario, r.algorithm, r.run));
+        bar.inc(1);
+    };
+    let outcome = run_experiment(&spec, &args.out, opts, &mut start, &done)?;
+    bar.finish_and_clear();
+    let secs = started.elapsed().as_secs_f64();
+    eprintln!(
+        "bench: {} runs in {secs:.1} s ({} already recorded); records in {}",
+        outcome.executed,
+        outcome.skipped,
+        args.out.join("runs.jsonl").display()
+    );
+    if outcome.records.len() < spec.size() {
+        eprintln!(
+            "bench: {} of {} runs recorded in this folder; merge the shards with `swarmplan aggregate DIR...`",
+            outcome.records.len(),
+            spec.size()
+        );
+        return Ok(());
+    }
+    let summary = summarize_records(spec.master_seed, &outcome.records);
+    write_summary(&args.out, &summary)
+}
+
+pub fn run_aggregate(args: &AggregateArgs) -> Result<()> {
+    let (spec, records) = aggregate(&args.dirs)?;
+    let summary = summarize_records(spec.master_seed, &records);
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("{}: cannot create", args.out.display()))?;
+    let text = serde_json::to_string_pretty(&spec)? + "\n";
+    std::fs::write(args.out.join("experiment.json"), text)?;
+    eprintln!(
+        "aggregate: {} runs from {} folders",
+        records.len(),
+        args.dirs.len()
+    );
+    write_summary(&args.out, &summary)
+}
+
+fn write_summary(dir: &Path, s: &ExperimentSummary) -> Result<()> {
+    let md = markdown(s);
+    let files = [
+        ("summary.md", md.clone()),
+        ("summary.csv", csv(s)),
+        ("summary.json", serde_json::to_string_pretty(s)? + "\n"),
+    ];
+    for (name, text) in files {
+        let path = dir.join(name);
+        std::fs::write(&path, text).with_context(|| format!("{}: cannot write", path.display()))?;
+    }
+    print!("{md}");
+    eprintln!(
+        "wrote {}/summary.md, summary.csv, summary.json",
+        dir.display()
+    );
+    Ok(())
+}

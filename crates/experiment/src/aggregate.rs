@@ -1,0 +1,74 @@
+//! Merging the folders of a sharded experiment: same experiment in each, no run twice,
+//! none missing.
+
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
+
+use thiserror::Error;
+
+use crate::matrix::ExperimentSpec;
+use crate::record::RunRecord;
+use crate::store::{describe, read_records, read_spec, StoreError, RUNS_FILE};
+
+#[derive(Debug, Error)]
+pub enum AggregateError {
+    #[error("aggregate: no folder given")]
+    NoFolders,
+    #[error(transparent)]
+    Store(#[from] StoreError),
+    #[error("{other}: a different experiment from {first} (compare their experiment.json)")]
+    Different { first: PathBuf, other: PathBuf },
+    #[error("{path}: run {key} is also in {earlier}")]
+    Duplicate {
+        path: PathBuf,
+        key: String,
+        earlier: PathBuf,
+    },
+    #[error("{missing} of {total} runs are missing (first: {first}); run the remaining shards, or `bench --resume` in their folders")]
+    Missing {
+        missing: usize,
+        total: usize,
+        first: String,
+    },
+}
+
+/// The experiment and all its records from `dirs`, checked complete and without duplicates.
+pub fn aggregate(dirs: &[PathBuf]) -> Result<(ExperimentSpec, Vec<RunRecord>), AggregateError> {
+    let first = dirs.first().ok_or(AggregateError::NoFolders)?;
+    let spec = read_spec(first)?;
+    let mut records: Vec<(RunRecord, &Path)> = Vec::new();
+    for d in dirs {
+        if read_spec(d)? != spec {
+            return Err(AggregateError::Different {
+                first: first.clone(),
+                other: d.clone(),
+            });
+        }
+        for r in read_records(d, false)? {
+            records.push((r, d.as_path()));
+        }
+    }
+    let mut seen = std::collections::HashMap::new();
+    for (r, d) in &records {
+        if let Some(earlier) = seen.insert(r.key(), *d) {
+            return Err(AggregateError::Duplicate {
+                path: d.join(RUNS_FILE),
+                key: describe(&r.key()),
+                earlier: earlier.join(RUNS_FILE),
+            });
+        }
+    }
+    let have: HashSet<_> = seen.into_keys().collect();
+    let all = spec.runs();
+    let missing: Vec<_> = all.iter().filter(|k| !have.contains(k)).collect();
+    if let Some(m) = missing.first() {
+        return Err(AggregateError::Missing {
+            missing: missing.len(),
+            total: all.len(),
+            first: describe(m),
+        });
+    }
+    let mut out: Vec<RunRecord> = records.into_iter().map(|(r, _)| r).collect();
+    out.sort_by_key(RunRecord::key);
+    Ok((spec, out))
+}

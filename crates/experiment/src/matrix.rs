@@ -1,0 +1,243 @@
+//! The experiment matrix: scenarios x parameter sets x algorithms x runs, in one fixed
+//! order, and each run's seed.
+//!
+//! A run's seed is derived from the master seed and the run's identity (scenario, algorithm,
+//! parameter set, run index) alone, so it does not depend on thread count, execution order,
+//! sharding or resuming.
+
+use serde::{Deserialize, Serialize};
+use swarmplan_core::encoding::EncodingKind;
+use swarmplan_core::optim::{Algorithm, AlgorithmParams, Budget};
+use swarmplan_core::rng::derive_seed;
+use thiserror::Error;
+
+/// One set of algorithm parameters, named so records and tables can tell sets apart.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ParamSet {
+    pub name: String,
+    /// Encoding for every algorithm of this set (default: each algorithm's pairing).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub encoding: Option<EncodingKind>,
+    #[serde(default)]
+    pub params: AlgorithmParams,
+}
+
+impl Default for ParamSet {
+    fn default() -> Self {
+        Self {
+            name: "paper".into(),
+            encoding: None,
+            params: AlgorithmParams::default(),
+        }
+    }
+}
+
+/// What an experiment runs. Written to `experiment.json` next to the records, so a resumed
+/// run or an aggregation can check it is continuing the same experiment.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExperimentSpec {
+    /// Master seed: every run's seed derives from it.
+    pub master_seed: u64,
+    /// Repetitions per (scenario, parameter set, algorithm).
+    pub runs: usize,
+    /// Built-in scenario names or scenario files.
+    pub scenarios: Vec<String>,
+    pub algorithms: Vec<Algorithm>,
+    #[serde(default = "default_param_sets")]
+    pub param_sets: Vec<ParamSet>,
+    #[serde(default)]
+    pub budget: Budget,
+    /// Terrain file replacing every scenario's terrain source.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub terrain: Option<String>,
+}
+
+fn default_param_sets() -> Vec<ParamSet> {
+    vec![ParamSet::default()]
+}
+
+impl ExperimentSpec {
+    /// The paper's experiment: both cases, the six algorithms of the paper plus SPSO (the
+    /// ablation of DLS), 200 runs each, paper settings.
+    #[must_use]
+    pub fn paper(master_seed: u64) -> Self {
+        Self {
+            master_seed,
+            runs: 200,
+            scenarios: vec!["paper-case1".into(), "paper-case2".into()],
+            algorithms: vec![
+                Algorithm::Pso,
+                Algorithm::Apso,
+                Algorithm::Qpso,
+                Algorithm::Gwo,
+                Algorithm::Abc,
+                Algorithm::Spso,
+                Algorithm::DlsSmpso,
+            ],
+            param_sets: default_param_sets(),
+            budget: Budget::DEFAULT,
+            terrain: None,
+        }
+    }
+
+    /// Checks the matrix is well formed.
+    pub fn validate(&self) -> Result<(), MatrixError> {
+        if self.runs == 0 {
+            return Err(MatrixError::Empty("runs must be at least 1".into()));
+        }
+        if self.scenarios.is_empty() || self.algorithms.is_empty() || self.param_sets.is_empty() {
+            return Err(MatrixError::Empty(
+                "scenarios, algorithms and param_sets must each list at least one entry".into(),
+            ));
+        }
+        let mut names: Vec<&str> = self.param_sets.iter().map(|p| p.name.as_str()).collect();
+        names.sort_unstable();
+        if let Some(w) = names.windows(2).find(|w| w[0] == w[1]) {
+            return Err(MatrixError::Duplicate(format!(
+                "param_sets: name `{}` appears twice",
+                w[0]
+            )));
+        }
+        for p in &self.param_sets {
+            p.params
+                .validate()
+                .map_err(|e| MatrixError::Params(format!("param_sets `{}`: {e}", p.name)))?;
+        }
+        Ok(())
+    }
+
+    /// Number of runs in the matrix.
+    #[must_use]
+    pub fn size(&self) -> usize {
+        self.scenarios.len() * self.param_sets.len() * self.algorithms.len() * self.runs
+    }
+
+    /// Every run, in the matrix's fixed order.
+    #[must_use]
+    pub fn runs(&self) -> Vec<RunKey> {
+        let mut v = Vec::with_capacity(self.size());
+        for scenario in &self.scenarios {
+            for set in &self.param_sets {
+                for alg in &self.algorithms {
+                    for run in 0..self.runs {
+                        v.push(RunKey {
+                            scenario: scenario.clone(),
+                            param_set: set.name.clone(),
+                            algorithm: *alg,
+                            run,
+                        });
+                    }
+                }
+            }
+        }
+        v
+    }
+
+    /// The seed of a run.
+    #[must_use]
+    pub fn seed(&self, key: &RunKey) -> u64 {
+        derive_seed(
+            self.master_seed,
+            &[&key.scenario, key.algorithm.name(), &key.param_set],
+            key.run as u64,
+        )
+    }
+
+    #[must_use]
+    pub fn param_set(&self, name: &str) -> Option<&ParamSet> {
+        self.param_sets.iter().find(|p| p.name == name)
+    }
+}
+
+/// The identity of one run.
+#[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub struct RunKey {
+    pub scenario: String,
+    pub param_set: String,
+    pub algorithm: Algorithm,
+    pub run: usize,
+}
+
+/// A slice of the matrix: runs whose position in the matrix order is `index - 1` modulo
+/// `count`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Shard {
+    /// 1-based.
+    pub index: usize,
+    pub count: usize,
+}
+
+impl Shard {
+    /// Parses `K/N` with 1 <= K <= N.
+    pub fn parse(s: &str) -> Result<Self, MatrixError> {
+        let bad = || MatrixError::Shard(format!("expected K/N with 1 <= K <= N, got `{s}`"));
+        let (k, n) = s.split_once('/').ok_or_else(bad)?;
+        let index: usize = k.trim().parse().map_err(|_| bad())?;
+        let count: usize = n.trim().parse().map_err(|_| bad())?;
+        if index == 0 || index > count {
+            return Err(bad());
+        }
+        Ok(Self { index, count })
+    }
+
+    #[must_use]
+    pub fn contains(&self, position: usize) -> bool {
+        position % self.count == self.index - 1
+    }
+}
+
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum MatrixError {
+    #[error("experiment: {0}")]
+    Empty(String),
+    #[error("experiment: {0}")]
+    Duplicate(String),
+    #[error("experiment: {0}")]
+    Params(String),
+    #[error("--shard: {0}")]
+    Shard(String),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn matrix_order_and_size() {
+        let spec = ExperimentSpec::paper(1);
+        let runs = spec.runs();
+        assert_eq!(runs.len(), 2 * 7 * 200);
+        assert_eq!(runs.len(), spec.size());
+        assert_eq!(runs[0].scenario, "paper-case1");
+        assert_eq!(runs[0].run, 0);
+        assert_eq!(runs[199].run, 199);
+        assert_eq!(runs[200].algorithm, Algorithm::Apso);
+    }
+
+    #[test]
+    fn seeds_depend_on_identity_only() {
+        let spec = ExperimentSpec::paper(7);
+        let runs = spec.runs();
+        let a = spec.seed(&runs[5]);
+        assert_eq!(a, spec.seed(&runs[5].clone()));
+        assert_ne!(a, spec.seed(&runs[6]));
+        let other = ExperimentSpec::paper(8);
+        assert_ne!(a, other.seed(&runs[5]));
+    }
+
+    #[test]
+    fn shards_partition_the_matrix() {
+        let n = 3;
+        let shards: Vec<Shard> = (1..=n)
+            .map(|k| Shard::parse(&format!("{k}/{n}")).unwrap())
+            .collect();
+        for pos in 0..100 {
+            assert_eq!(shards.iter().filter(|s| s.contains(pos)).count(), 1);
+        }
+        assert!(Shard::parse("0/3").is_err());
+        assert!(Shard::parse("4/3").is_err());
+        assert!(Shard::parse("x").is_err());
+    }
+}

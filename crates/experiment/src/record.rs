@@ -1,0 +1,128 @@
+//! One finished run as one flat JSON record (a line of `runs.jsonl`).
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+use swarmplan_core::cost::Terms;
+use swarmplan_core::encoding::EncodingKind;
+use swarmplan_core::optim::{Algorithm, AlgorithmParams};
+use swarmplan_core::run::RunResult;
+
+use crate::matrix::RunKey;
+
+/// Everything a statistic or a figure may need about one run. Non-finite costs are stored
+/// as `null` (JSON has no infinity) and read back as +inf.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunRecord {
+    pub scenario: String,
+    pub param_set: String,
+    pub algorithm: Algorithm,
+    pub encoding: EncodingKind,
+    pub run: usize,
+    pub master_seed: u64,
+    pub seed: u64,
+    pub params: AlgorithmParams,
+    /// Total cost of the best plan (penalty included).
+    #[serde(with = "finite_or_null")]
+    pub cost_total: f64,
+    /// cost_total / number of UAVs, as the paper's tables report it.
+    #[serde(with = "finite_or_null")]
+    pub cost_per_uav: f64,
+    /// Each UAV's weighted terms summed (no penalty).
+    pub uav_costs: Vec<f64>,
+    /// Weighted terms summed over UAVs, plus `penalty`.
+    pub terms: BTreeMap<String, f64>,
+    pub feasible: bool,
+    /// Number of violations of each kind in the best plan.
+    pub violations: BTreeMap<String, usize>,
+    pub evaluations: u64,
+    pub iterations: usize,
+    pub seconds: f64,
+    /// Best cost per UAV after initialisation and after each iteration.
+    pub convergence: Vec<f64>,
+}
+
+impl RunRecord {
+    #[must_use]
+    pub fn key(&self) -> RunKey {
+        RunKey {
+            scenario: self.scenario.clone(),
+            param_set: self.param_set.clone(),
+            algorithm: self.algorithm,
+            run: self.run,
+        }
+    }
+
+    /// The record of `result`, run as `key` of an experiment with `master_seed`.
+    #[must_use]
+    pub fn new(
+        key: &RunKey,
+        master_seed: u64,
+        params: AlgorithmParams,
+        result: &RunResult,
+    ) -> Self {
+        let a = &result.assessment;
+        let n = a.per_uav.len().max(1) as f64;
+        let t = a.term_totals();
+        let mut terms: BTreeMap<String, f64> = Terms::NAMES
+            .iter()
+            .zip(t.values())
+            .map(|(k, v)| ((*k).to_string(), finite(v)))
+            .collect();
+        terms.insert("penalty".into(), finite(a.penalty));
+        let mut violations = BTreeMap::new();
+        for v in a.violations.iter().flatten() {
+            *violations.entry(v.kind.name().to_string()).or_insert(0) += 1;
+        }
+        Self {
+            scenario: key.scenario.clone(),
+            param_set: key.param_set.clone(),
+            algorithm: key.algorithm,
+            encoding: result.encoding,
+            run: key.run,
+            master_seed,
+            seed: result.seed,
+            params,
+            cost_total: a.total,
+            cost_per_uav: a.total / n,
+            uav_costs: a.per_uav.iter().map(|u| finite(u.cost)).collect(),
+            terms,
+            feasible: a.feasible(),
+            violations,
+            evaluations: result.outcome.evaluations,
+            iterations: result.outcome.iterations,
+            seconds: result.seconds,
+            convergence: result
+                .outcome
+                .trace
+                .iter()
+                .map(|r| finite(r.best_cost / n))
+                .collect(),
+        }
+    }
+}
+
+/// Caps non-finite values for fields that are diagnostic only.
+fn finite(v: f64) -> f64 {
+    if v.is_finite() {
+        v
+    } else {
+        f64::MAX
+    }
+}
+
+mod finite_or_null {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
+        if v.is_finite() {
+            s.serialize_f64(*v)
+        } else {
+            s.serialize_none()
+        }
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::INFINITY))
+    }
+}

@@ -1,0 +1,133 @@
+//! Runs an experiment's pending runs in parallel (rayon) and records each as it finishes.
+//!
+//! Results do not depend on the thread count or the order runs finish in: each run's seed
+//! comes from its identity, runs share nothing mutable, and the summary sorts records by
+//! identity before computing anything.
+
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
+
+use rayon::prelude::*;
+use swarmplan_core::run::{run, RunRequest};
+use swarmplan_core::world::World;
+use swarmplan_io::scenario::{build_world, load_spec, ScenarioError};
+use thiserror::Error;
+
+use crate::matrix::{ExperimentSpec, MatrixError, RunKey, Shard};
+use crate::record::RunRecord;
+use crate::store::{RecordWriter, StoreError};
+
+#[derive(Debug, Error)]
+pub enum RunnerError {
+    #[error(transparent)]
+    Matrix(#[from] MatrixError),
+    #[error(transparent)]
+    Scenario(#[from] ScenarioError),
+    #[error(transparent)]
+    Store(#[from] StoreError),
+    #[error("cannot start {threads} worker threads: {message}")]
+    Pool { threads: usize, message: String },
+}
+
+/// How to run.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct RunnerOptions {
+    /// Worker threads (0: one per core).
+    pub threads: usize,
+    /// Only this slice of the matrix.
+    pub shard: Option<Shard>,
+    /// Continue the records already in the folder.
+    pub resume: bool,
+}
+
+/// What a call did.
+#[derive(Debug, Clone)]
+pub struct RunnerOutcome {
+    /// Every record of the folder (earlier ones included), sorted by run identity.
+    pub records: Vec<RunRecord>,
+    /// Runs executed by this call.
+    pub executed: usize,
+    /// Runs of this shard found already recorded.
+    pub skipped: usize,
+}
+
+/// Runs this shard's pending runs into `dir`, calling `start(pending)` once and
+/// `done(record)` after each run is recorded (from worker threads).
+pub fn run_experiment(
+    spec: &ExperimentSpec,
+    dir: &Path,
+    opts: RunnerOptions,
+    start: &mut dyn FnMut(usize),
+    done: &(dyn Fn(&RunRecord) + Sync),
+) -> Result<RunnerOutcome, RunnerError> {
+    spec.validate()?;
+    let worlds: Vec<(String, World)> = spec
+        .scenarios
+        .iter()
+        .map(|name| {
+            let loaded = load_spec(name)?;
+            let terrain = spec.terrain.as_ref().map(PathBuf::from);
+            Ok((name.clone(), build_world(&loaded, terrain.as_deref())?))
+        })
+        .collect::<Result<_, ScenarioError>>()?;
+    let (writer, existing) = RecordWriter::open(dir, spec, opts.resume)?;
+    let done_keys: HashSet<RunKey> = existing.iter().map(RunRecord::key).collect();
+    let mine: Vec<RunKey> = spec
+        .runs()
+        .into_iter()
+        .enumerate()
+        .filter(|(pos, _)| opts.shard.is_none_or(|s| s.contains(*pos)))
+        .map(|(_, k)| k)
+        .collect();
+    let pending: Vec<RunKey> = mine
+        .iter()
+        .filter(|k| !done_keys.contains(k))
+        .cloned()
+        .collect();
+    let skipped = mine.len() - pending.len();
+    start(pending.len());
+
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(opts.threads)
+        .build()
+        .map_err(|e| RunnerError::Pool {
+            threads: opts.threads,
+            message: e.to_string(),
+        })?;
+    let new: Vec<RunRecord> = pool.install(|| {
+        pending
+            .par_iter()
+            .map(|key| {
+                let world = &worlds
+                    .iter()
+                    .find(|(n, _)| *n == key.scenario)
+                    .expect("every scenario of the matrix was loaded")
+                    .1;
+                let set = spec
+                    .param_set(&key.param_set)
+                    .expect("keys come from the spec's sets");
+                let req = RunRequest {
+                    algorithm: key.algorithm,
+                    encoding: set.encoding,
+                    params: set.params,
+                    budget: spec.budget,
+                    seed: spec.seed(key),
+                };
+                let result = run(world, &req, &mut |_| {});
+                let record = RunRecord::new(key, spec.master_seed, set.params, &result);
+                writer.append(&record)?;
+                done(&record);
+                Ok(record)
+            })
+            .collect::<Result<Vec<_>, StoreError>>()
+    })?;
+    let executed = new.len();
+    let mut records = existing;
+    records.extend(new);
+    records.sort_by_key(RunRecord::key);
+    Ok(RunnerOutcome {
+        records,
+        executed,
+        skipped,
+    })
+}

@@ -1,0 +1,204 @@
+//! The files of an experiment folder: `experiment.json` (the matrix) and `runs.jsonl` (one
+//! record per finished run), written so that a kill at any moment loses at most the runs in
+//! flight and never leaves a corrupt line.
+//!
+//! Each record is serialised first and appended with a single `write` of the whole line to
+//! a file opened in append mode, then synced; the kernel completes a write it has started
+//! even when the process is killed, so a line is either all there or absent. Reading back
+//! still tolerates a torn last line (a full disk, a crash of the machine): it is dropped and
+//! the file truncated before appending again.
+
+use std::collections::HashSet;
+use std::fs::{File, OpenOptions};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+use thiserror::Error;
+
+use crate::matrix::{ExperimentSpec, RunKey};
+use crate::record::RunRecord;
+
+pub const SPEC_FILE: &str = "experiment.json";
+pub const RUNS_FILE: &str = "runs.jsonl";
+
+#[derive(Debug, Error)]
+pub enum StoreError {
+    #[error("{path}: {source}")]
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("{path}: line {line}: not a run record: {message}")]
+    BadRecord {
+        path: PathBuf,
+        line: usize,
+        message: String,
+    },
+    #[error("{path}: not an experiment description: {message}")]
+    BadSpec { path: PathBuf, message: String },
+    #[error("{dir}: holds results of a different experiment ({what}); use another --out, or the same flags to --resume")]
+    Mismatch { dir: PathBuf, what: String },
+    #[error("{dir}: already holds {count} run records; pass --resume to continue them, or choose another --out")]
+    NotEmpty { dir: PathBuf, count: usize },
+    #[error("{path}: run {key} appears twice")]
+    Duplicate { path: PathBuf, key: String },
+}
+
+fn io(path: &Path) -> impl FnOnce(std::io::Error) -> StoreError + '_ {
+    move |source| StoreError::Io {
+        path: path.to_path_buf(),
+        source,
+    }
+}
+
+/// Reads `dir/experiment.json`.
+pub fn read_spec(dir: &Path) -> Result<ExperimentSpec, StoreError> {
+    let path = dir.join(SPEC_FILE);
+    let text = std::fs::read_to_string(&path).map_err(io(&path))?;
+    serde_json::from_str(&text).map_err(|e| StoreError::BadSpec {
+        path,
+        message: e.to_string(),
+    })
+}
+
+/// Reads the records of `dir/runs.jsonl` (none if absent). With `repair`, a torn last line
+/// is cut off the file; without, it is only skipped.
+pub fn read_records(dir: &Path, repair: bool) -> Result<Vec<RunRecord>, StoreError> {
+    let path = dir.join(RUNS_FILE);
+    let bytes = match std::fs::read(&path) {
+        Ok(b) => b,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(e) => return Err(io(&path)(e)),
+    };
+    let complete = bytes.iter().rposition(|b| *b == b'\n').map_or(0, |p| p + 1);
+    if complete < bytes.len() && repair {
+        let f = OpenOptions::new()
+            .write(true)
+            .open(&path)
+            .map_err(io(&path))?;
+        f.set_len(complete as u64).map_err(io(&path))?;
+    }
+    let text = String::from_utf8_lossy(&bytes[..complete]);
+    let mut records = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        if line.trim().is_empty() {
+            continue;
+        }
+        let r: RunRecord = serde_json::from_str(line).map_err(|e| StoreError::BadRecord {
+            path: path.clone(),
+            line: i + 1,
+            message: e.to_string(),
+        })?;
+        records.push(r);
+    }
+    Ok(records)
+}
+
+/// Fails if two records share a run identity.
+pub fn check_unique(path: &Path, records: &[RunRecord]) -> Result<(), StoreError> {
+    let mut seen = HashSet::new();
+    for r in records {
+        if !seen.insert(r.key()) {
+            return Err(StoreError::Duplicate {
+                path: path.to_path_buf(),
+                key: describe(&r.key()),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// `scenario/param_set/algorithm#run`.
+#[must_use]
+pub fn describe(k: &RunKey) -> String {
+    format!("{}/{}/{}#{}", k.scenario, k.param_set, k.algorithm, k.run)
+}
+
+/// Appends records to `runs.jsonl` from any thread.
+pub struct RecordWriter {
+    path: PathBuf,
+    file: Mutex<File>,
+}
+
+impl RecordWriter {
+    /// Prepares `dir` for `spec`: writes `experiment.json` or checks it matches, and with
+    /// `resume` returns the runs already recorded. Without `resume` the folder must not hold
+    /// records yet.
+    pub fn open(
+        dir: &Path,
+        spec: &ExperimentSpec,
+        resume: bool,
+    ) -> Result<(Self, Vec<RunRecord>), StoreError> {
+        std::fs::create_dir_all(dir).map_err(io(dir))?;
+        let spec_path = dir.join(SPEC_FILE);
+        if spec_path.exists() {
+            let old = read_spec(dir)?;
+            if old != *spec {
+                return Err(StoreError::Mismatch {
+                    dir: dir.to_path_buf(),
+                    what: diff(&old, spec),
+                });
+            }
+        } else {
+            let text = serde_json::to_string_pretty(spec).expect("a spec serialises");
+            std::fs::write(&spec_path, text + "\n").map_err(io(&spec_path))?;
+        }
+        let existing = read_records(dir, true)?;
+        if !resume && !existing.is_empty() {
+            return Err(StoreError::NotEmpty {
+                dir: dir.to_path_buf(),
+                count: existing.len(),
+            });
+        }
+        let path = dir.join(RUNS_FILE);
+        check_unique(&path, &existing)?;
+        let file = OpenOptions::new()
+            .create(true)
+            .append(true)
+            .open(&path)
+            .map_err(io(&path))?;
+        Ok((
+            Self {
+                path,
+                file: Mutex::new(file),
+            },
+            existing,
+        ))
+    }
+
+    /// Appends one record as one line, in one write, and syncs it to disk.
+    pub fn append(&self, record: &RunRecord) -> Result<(), StoreError> {
+        let mut line = serde_json::to_vec(record).expect("a record serialises");
+        line.push(b'\n');
+        let mut f = self
+            .file
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        f.write_all(&line).map_err(io(&self.path))?;
+        f.sync_data().map_err(io(&self.path))
+    }
+}
+
+/// Names the first field where two specs differ.
+fn diff(old: &ExperimentSpec, new: &ExperimentSpec) -> String {
+    if old.master_seed != new.master_seed {
+        format!(
+            "master seed {} there, {} now",
+            old.master_seed, new.master_seed
+        )
+    } else if old.runs != new.runs {
+        format!("{} runs there, {} now", old.runs, new.runs)
+    } else if old.scenarios != new.scenarios {
+        format!(
+            "scenarios {:?} there, {:?} now",
+            old.scenarios, new.scenarios
+        )
+    } else if old.algorithms != new.algorithms {
+        "other algorithms".into()
+    } else if old.budget != new.budget {
+        "another budget".into()
+    } else {
+        "other parameters or terrain".into()
+    }
+}

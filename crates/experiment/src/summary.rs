@@ -1,0 +1,358 @@
+//! The summary of an experiment: per scenario and algorithm the feasible share and cost
+//! statistics, and the tests that settle comparisons (rank-sum against DLS-SMPSO with Holm's
+//! correction, Fisher's exact test on feasibility, Friedman's test with average ranks).
+//!
+//! Computed from records sorted by run identity, so it is the same whatever the thread count
+//! or shard layout that produced them. Timings are the one thing that differs between two
+//! executions of the same experiment; they appear in `summary.md` and `summary.csv` but not
+//! in `summary.json`, which is therefore identical for identical seeds.
+
+use std::fmt::Write as _;
+
+use serde::{Deserialize, Serialize};
+use swarmplan_core::encoding::EncodingKind;
+use swarmplan_core::optim::Algorithm;
+
+use crate::record::RunRecord;
+use crate::stats::{fisher_exact, friedman, holm, rank_sum, summarize, FriedmanTest, Summary};
+
+/// One algorithm (with one parameter set) on one scenario.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GroupSummary {
+    pub algorithm: Algorithm,
+    pub param_set: String,
+    pub encoding: EncodingKind,
+    pub runs: usize,
+    pub feasible: usize,
+    /// Feasibility ratio, percent.
+    pub fr_percent: f64,
+    /// Cost per UAV over all runs.
+    pub cost: Option<Summary>,
+    /// Cost per UAV over feasible runs only.
+    pub cost_feasible: Option<Summary>,
+    pub mean_evaluations: f64,
+    /// Wall time per run (not in summary.json: it varies between executions).
+    #[serde(skip)]
+    pub mean_seconds: f64,
+    /// Against the reference algorithm (absent for the reference itself).
+    pub versus_reference: Option<Versus>,
+}
+
+/// Tests of one algorithm against the reference (DLS-SMPSO).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Versus {
+    /// Mann-Whitney U of this algorithm's costs against the reference's.
+    pub rank_sum_u: f64,
+    pub rank_sum_p: f64,
+    /// Holm-adjusted over the algorithms of the scenario.
+    pub rank_sum_p_holm: f64,
+    /// Fisher's exact test on (feasible, infeasible) counts.
+    pub fisher_p: f64,
+}
+
+/// Everything about one scenario and parameter set.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ScenarioSummary {
+    pub scenario: String,
+    pub param_set: String,
+    pub reference: Option<Algorithm>,
+    pub groups: Vec<GroupSummary>,
+    /// Over runs present for every algorithm, blocks = run index.
+    pub friedman: Option<FriedmanTest>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ExperimentSummary {
+    pub master_seed: u64,
+    pub records: usize,
+    pub scenarios: Vec<ScenarioSummary>,
+}
+
+/// The algorithm others are compared with, when it is part of the experiment.
+pub const REFERENCE: Algorithm = Algorithm::DlsSmpso;
+
+/// Summarises records (any order).
+#[must_use]
+pub fn summarize_records(master_seed: u64, records: &[RunRecord]) -> ExperimentSummary {
+    let mut sorted: Vec<&RunRecord> = records.iter().collect();
+    sorted.sort_by_key(|r| r.key());
+    let mut cells: Vec<(String, String)> = sorted
+        .iter()
+        .map(|r| (r.scenario.clone(), r.param_set.clone()))
+        .collect();
+    cells.dedup();
+    let mut scenarios = Vec::new();
+    for (scenario, set) in cells {
+        let mine: Vec<&RunRecord> = sorted
+            .iter()
+            .filter(|r| r.scenario == scenario && r.param_set == set)
+            .copied()
+            .collect();
+        let mut algs: Vec<Algorithm> = mine.iter().map(|r| r.algorithm).collect();
+        algs.dedup();
+        let costs = |a: Algorithm| -> Vec<f64> {
+            mine.iter()
+                .filter(|r| r.algorithm == a)
+                .map(|r| r.cost_per_uav)
+                .collect()
+        };
+        let reference = algs.contains(&REFERENCE).then_some(REFERENCE);
+        let mut groups: Vec<GroupSummary> = algs
+            .iter()
+            .map(|&a| {
+                let rs: Vec<&RunRecord> =
+                    mine.iter().filter(|r| r.algorithm == a).copied().collect();
+                let n = rs.len();
+                let feasible = rs.iter().filter(|r| r.feasible).count();
+                let all = costs(a);
+                let feas: Vec<f64> = rs
+                    .iter()
+                    .filter(|r| r.feasible)
+                    .map(|r| r.cost_per_uav)
+                    .collect();
+                GroupSummary {
+                    algorithm: a,
+                    param_set: set.clone(),
+                    encoding: rs[0].encoding,
+                    runs: n,
+                    feasible,
+                    fr_percent: 100.0 * feasible as f64 / n as f64,
+                    cost: summarize(&all),
+                    cost_feasible: summarize(&feas),
+                    mean_evaluations: rs.iter().map(|r| r.evaluations as f64).sum::<f64>()
+                        / n as f64,
+                    mean_seconds: rs.iter().map(|r| r.seconds).sum::<f64>() / n as f64,
+                    versus_reference: None,
+                }
+            })
+            .collect();
+        if let Some(rf) = reference {
+            let ref_costs = costs(rf);
+            let ref_group = groups
+                .iter()
+                .find(|g| g.algorithm == rf)
+                .expect("reference present");
+            let (rf_ok, rf_n) = (ref_group.feasible as u64, ref_group.runs as u64);
+            let tests: Vec<(usize, f64, f64, f64)> = groups
+                .iter()
+                .enumerate()
+                .filter(|(_, g)| g.algorithm != rf)
+                .filter_map(|(i, g)| {
+                    let t = rank_sum(&costs(g.algorithm), &ref_costs)?;
+                    let f = fisher_exact(
+                        g.feasible as u64,
+                        (g.runs - g.feasible) as u64,
+                        rf_ok,
+                        rf_n - rf_ok,
+                    );
+                    Some((i, t.u, t.p_value, f))
+                })
+                .collect();
+            let adjusted = holm(&tests.iter().map(|t| t.2).collect::<Vec<_>>());
+            for ((i, u, p, f), ph) in tests.into_iter().zip(adjusted) {
+                groups[i].versus_reference = Some(Versus {
+                    rank_sum_u: u,
+                    rank_sum_p: p,
+                    rank_sum_p_holm: ph,
+                    fisher_p: f,
+                });
+            }
+        }
+        // Friedman over the run indices every algorithm has.
+        let runs_of = |a: Algorithm| -> Vec<usize> {
+            mine.iter()
+                .filter(|r| r.algorithm == a)
+                .map(|r| r.run)
+                .collect()
+        };
+        let common: Vec<usize> = runs_of(algs[0])
+            .into_iter()
+            .filter(|run| algs.iter().all(|&a| runs_of(a).contains(run)))
+            .collect();
+        let blocks: Vec<Vec<f64>> = common
+            .iter()
+            .map(|run| {
+                algs.iter()
+                    .map(|&a| {
+                        mine.iter()
+                            .find(|r| r.algorithm == a && r.run == *run)
+                            .expect("common run")
+                            .cost_per_uav
+                    })
+                    .collect()
+            })
+            .collect();
+        let friedman = if algs.len() >= 2 {
+            friedman(&blocks)
+        } else {
+            None
+        };
+        scenarios.push(ScenarioSummary {
+            scenario,
+            param_set: set,
+            reference,
+            groups,
+            friedman,
+        });
+    }
+    ExperimentSummary {
+        master_seed,
+        records: records.len(),
+        scenarios,
+    }
+}
+
+fn num(v: Option<f64>) -> String {
+    match v {
+        Some(x) if x.is_finite() => format!("{x:.1}"),
+        Some(x) if x.is_nan() => "nan".into(),
+        Some(_) => "inf".into(),
+        None => "-".into(),
+    }
+}
+
+fn p(v: f64) -> String {
+    if v < 1e-4 {
+        format!("{v:.1e}")
+    } else {
+        format!("{v:.4}")
+    }
+}
+
+/// `summary.md`: a table per scenario laid out like the paper's Tables 4-5, then the full
+/// statistics and the tests.
+#[must_use]
+pub fn markdown(s: &ExperimentSummary) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "# Experiment summary\n\nMaster seed {}, {} runs recorded. Costs are per UAV (total / n), as in the paper.\n", s.master_seed, s.records);
+    for sc in &s.scenarios {
+        let _ = writeln!(
+            out,
+            "## {} (parameter set `{}`)\n",
+            sc.scenario, sc.param_set
+        );
+        let _ = writeln!(
+            out,
+            "| Algorithm | Worst | Optimal | Mean | FR(%) |\n|---|---|---|---|---|"
+        );
+        for g in &sc.groups {
+            let c = g.cost.as_ref();
+            let _ = writeln!(
+                out,
+                "| {} | {} | {} | {} | {:.1} |",
+                g.algorithm,
+                num(c.map(|c| c.max)),
+                num(c.map(|c| c.min)),
+                num(c.map(|c| c.mean)),
+                g.fr_percent
+            );
+        }
+        let _ = writeln!(out, "\n| algorithm | encoding | runs | feasible | median | std | feasible runs: worst / best / mean / median / std | mean evaluations | mean s/run |\n|---|---|---|---|---|---|---|---|---|");
+        for g in &sc.groups {
+            let c = g.cost.as_ref();
+            let f = g.cost_feasible.as_ref();
+            let _ = writeln!(
+                out,
+                "| {} | {} | {} | {} | {} | {} | {} / {} / {} / {} / {} | {:.0} | {:.3} |",
+                g.algorithm,
+                g.encoding,
+                g.runs,
+                g.feasible,
+                num(c.map(|c| c.median)),
+                num(c.map(|c| c.std)),
+                num(f.map(|c| c.max)),
+                num(f.map(|c| c.min)),
+                num(f.map(|c| c.mean)),
+                num(f.map(|c| c.median)),
+                num(f.map(|c| c.std)),
+                g.mean_evaluations,
+                g.mean_seconds
+            );
+        }
+        if let Some(rf) = sc.reference {
+            let _ = writeln!(out, "\nAgainst {rf}: Wilcoxon rank-sum on cost (two-sided, Holm-adjusted over the algorithms) and Fisher's exact test on FR.\n\n| algorithm | U | p | p (Holm) | Fisher p (FR) |\n|---|---|---|---|---|");
+            for g in &sc.groups {
+                if let Some(v) = &g.versus_reference {
+                    let _ = writeln!(
+                        out,
+                        "| {} | {:.1} | {} | {} | {} |",
+                        g.algorithm,
+                        v.rank_sum_u,
+                        p(v.rank_sum_p),
+                        p(v.rank_sum_p_holm),
+                        p(v.fisher_p)
+                    );
+                }
+            }
+        }
+        if let Some(fr) = &sc.friedman {
+            let ranks: Vec<String> = sc
+                .groups
+                .iter()
+                .zip(&fr.mean_ranks)
+                .map(|(g, r)| format!("{} {r:.2}", g.algorithm))
+                .collect();
+            let _ = writeln!(
+                out,
+                "\nFriedman test over {} algorithms: chi2 = {:.3}, df = {}, p = {}. Average ranks (1 = best): {}.\n",
+                sc.groups.len(),
+                fr.statistic,
+                fr.df,
+                p(fr.p_value),
+                ranks.join(", ")
+            );
+        } else {
+            out.push('\n');
+        }
+    }
+    out
+}
+
+/// `summary.csv`: one row per scenario, parameter set and algorithm.
+#[must_use]
+pub fn csv(s: &ExperimentSummary) -> String {
+    let mut out = String::from("scenario,param_set,algorithm,encoding,runs,feasible,fr_percent,worst,best,mean,median,std,feasible_worst,feasible_best,feasible_mean,feasible_median,feasible_std,mean_evaluations,mean_seconds,rank_sum_p,rank_sum_p_holm,fisher_p\n");
+    let opt = |v: Option<f64>| {
+        v.map_or(String::new(), |x| {
+            if x.is_finite() {
+                x.to_string()
+            } else {
+                "inf".into()
+            }
+        })
+    };
+    for sc in &s.scenarios {
+        for g in &sc.groups {
+            let c = g.cost.as_ref();
+            let f = g.cost_feasible.as_ref();
+            let v = g.versus_reference.as_ref();
+            let _ = writeln!(
+                out,
+                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                sc.scenario,
+                sc.param_set,
+                g.algorithm,
+                g.encoding,
+                g.runs,
+                g.feasible,
+                g.fr_percent,
+                opt(c.map(|c| c.max)),
+                opt(c.map(|c| c.min)),
+                opt(c.map(|c| c.mean)),
+                opt(c.map(|c| c.median)),
+                opt(c.map(|c| c.std)),
+                opt(f.map(|c| c.max)),
+                opt(f.map(|c| c.min)),
+                opt(f.map(|c| c.mean)),
+                opt(f.map(|c| c.median)),
+                opt(f.map(|c| c.std)),
+                g.mean_evaluations,
+                g.mean_seconds,
+                opt(v.map(|v| v.rank_sum_p)),
+                opt(v.map(|v| v.rank_sum_p_holm)),
+                opt(v.map(|v| v.fisher_p)),
+            );
+        }
+    }
+    out
+}
