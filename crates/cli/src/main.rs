@@ -3,6 +3,7 @@
 
 mod commands;
 mod render;
+mod report;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -33,6 +34,8 @@ enum Command {
     Bench(commands::bench::BenchArgs),
     /// Merge the folders of a sharded experiment into one summary.
     Aggregate(commands::bench::AggregateArgs),
+    /// Write a self-contained HTML report of a plan or bench folder.
+    Report(commands::report::ReportArgs),
 }
 
 #[derive(Debug, Subcommand)]
@@ -68,6 +71,7 @@ fn main() -> ExitCode {
         Command::Evaluate(args) => commands::evaluate::run(&args),
         Command::Bench(args) => commands::bench::run_bench(&args),
         Command::Aggregate(args) => commands::bench::run_aggregate(&args),
+        Command::Report(args) => commands::report::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

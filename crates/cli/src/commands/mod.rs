@@ -2,6 +2,7 @@
 pub mod bench;
 pub mod evaluate;
 pub mod plan;
+pub mod report;
 pub mod scenario;
 
 use anyhow::Result;

@@ -10,6 +10,7 @@ use swarmplan_core::encoding::EncodingKind;
 use swarmplan_core::optim::{Algorithm, AlgorithmParams, Budget, IterationRecord};
 use swarmplan_core::run::{run, RunRequest};
 use swarmplan_io::plan_file::{assessment_json, json_number, plan_file};
+use swarmplan_io::scenario::to_toml;
 
 use crate::render;
 use crate::ScenarioArgs;
@@ -143,23 +144,29 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     csv.flush()?;
 
     let a = &result.assessment;
+    let mut obj = assessment_json(a);
+    let o = obj
+        .as_object_mut()
+        .expect("assessment_json returns an object");
+    o.insert("scenario".into(), world.spec.name.clone().into());
+    o.insert("algorithm".into(), result.algorithm.name().into());
+    o.insert("encoding".into(), result.encoding.name().into());
+    o.insert("seed".into(), result.seed.into());
+    o.insert("evaluations".into(), result.outcome.evaluations.into());
+    o.insert("iterations".into(), result.outcome.iterations.into());
+    o.insert("seconds".into(), json_number(result.seconds));
+    o.insert("plan".into(), serde_json::to_value(&pf)?);
+    o.insert(
+        "files".into(),
+        serde_json::json!({"plan": plan_path, "convergence": conv_path}),
+    );
+    let run_path = args.out.join("run.json");
+    std::fs::write(&run_path, serde_json::to_string_pretty(&obj)? + "\n")
+        .with_context(|| format!("{}: cannot write", run_path.display()))?;
+    let scenario_path = args.out.join("scenario.toml");
+    std::fs::write(&scenario_path, to_toml(&world.spec))
+        .with_context(|| format!("{}: cannot write", scenario_path.display()))?;
     if args.json {
-        let mut obj = assessment_json(a);
-        let o = obj
-            .as_object_mut()
-            .expect("assessment_json returns an object");
-        o.insert("scenario".into(), world.spec.name.clone().into());
-        o.insert("algorithm".into(), result.algorithm.name().into());
-        o.insert("encoding".into(), result.encoding.name().into());
-        o.insert("seed".into(), result.seed.into());
-        o.insert("evaluations".into(), result.outcome.evaluations.into());
-        o.insert("iterations".into(), result.outcome.iterations.into());
-        o.insert("seconds".into(), json_number(result.seconds));
-        o.insert("plan".into(), serde_json::to_value(&pf)?);
-        o.insert(
-            "files".into(),
-            serde_json::json!({"plan": plan_path, "convergence": conv_path}),
-        );
         println!("{}", serde_json::to_string_pretty(&obj)?);
     } else {
         print!("{}", render::assessment(&world, a));
@@ -172,7 +179,13 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             result.outcome.iterations,
             result.seconds
         );
-        println!("wrote {} and {}", plan_path.display(), conv_path.display());
+        println!(
+            "wrote {}, {}, {} and {}",
+            plan_path.display(),
+            conv_path.display(),
+            run_path.display(),
+            scenario_path.display()
+        );
     }
     Ok(())
 }

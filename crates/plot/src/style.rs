@@ -1,0 +1,240 @@
+//! The look shared by every figure: the font, sizes that scale with the figure, colours
+//! (UAVs, algorithms, contact states, terrain colour map) and small geometry helpers
+//! (circles and dashes in data units).
+//!
+//! Sizes are given for the default 1200 x 900 px figure and scaled with the figure's
+//! smaller relative side, so a smaller PNG keeps the same proportions.
+
+use std::sync::OnceLock;
+
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use plotters::style::FontStyle;
+
+/// The family every text uses. plotters' `ab_glyph` engine looks fonts up by this name,
+/// and the SVG files name it too.
+pub(crate) const FONT: &str = "sans-serif";
+
+/// Registers DejaVu Sans (regular and bold) under [`FONT`], once per process.
+pub(crate) fn register_font() -> Result<(), String> {
+    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    DONE.get_or_init(|| {
+        let fonts: [(FontStyle, &'static [u8]); 2] = [
+            (FontStyle::Normal, dejavu::sans::regular()),
+            (FontStyle::Bold, dejavu::sans::bold()),
+        ];
+        for (style, bytes) in fonts {
+            plotters::style::register_font(FONT, style, bytes).map_err(|_| {
+                format!("the embedded DejaVu Sans ({style:?}) is not a readable font")
+            })?;
+        }
+        Ok(())
+    })
+    .clone()
+}
+
+/// Scales sizes given for a 1200 x 900 px figure to the actual one.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Scale(f64);
+
+impl Scale {
+    pub(crate) fn of(size: (u32, u32)) -> Self {
+        Self((f64::from(size.0) / 1200.0).min(f64::from(size.1) / 900.0))
+    }
+
+    /// A length in pixels (at least 1).
+    pub(crate) fn px(self, v: f64) -> u32 {
+        (v * self.0).round().max(1.0) as u32
+    }
+
+    /// A signed pixel offset.
+    pub(crate) fn off(self, v: f64) -> i32 {
+        (v * self.0).round() as i32
+    }
+
+    /// A font size in pixels (at least 9, so that small figures stay legible).
+    pub(crate) fn font(self, v: f64) -> f64 {
+        (v * self.0).max(9.0)
+    }
+
+    pub(crate) fn title(self) -> TextStyle<'static> {
+        (FONT, self.font(28.0)).into_font().into()
+    }
+    pub(crate) fn subtitle(self) -> TextStyle<'static> {
+        (FONT, self.font(21.0)).into_font().into()
+    }
+    pub(crate) fn axis_desc(self) -> TextStyle<'static> {
+        (FONT, self.font(19.0)).into_font().into()
+    }
+    pub(crate) fn tick(self) -> TextStyle<'static> {
+        (FONT, self.font(16.0)).into_font().into()
+    }
+    pub(crate) fn legend(self) -> TextStyle<'static> {
+        (FONT, self.font(16.0)).into_font().into()
+    }
+    pub(crate) fn note(self) -> TextStyle<'static> {
+        (FONT, self.font(14.0)).into_font().into()
+    }
+}
+
+/// A text style centred on its anchor.
+pub(crate) fn centred(style: TextStyle<'static>) -> TextStyle<'static> {
+    style.pos(Pos::new(HPos::Center, VPos::Center))
+}
+
+/// Strong, mutually distinct colours for UAV paths, chosen to stand out on the light
+/// terrain colours and to differ from the threat red.
+const UAV_COLOURS: [RGBColor; 8] = [
+    RGBColor(0, 82, 204),
+    RGBColor(230, 110, 0),
+    RGBColor(150, 40, 190),
+    RGBColor(0, 150, 160),
+    RGBColor(215, 25, 140),
+    RGBColor(30, 30, 30),
+    RGBColor(120, 95, 0),
+    RGBColor(20, 160, 60),
+];
+
+/// Colour of UAV `i` (0-based).
+pub(crate) fn uav_colour(i: usize) -> RGBColor {
+    UAV_COLOURS[i % UAV_COLOURS.len()]
+}
+
+/// Colour of the `i`-th series of a comparison (algorithms).
+pub(crate) fn series_colour(i: usize) -> RGBColor {
+    const C: [RGBColor; 8] = [
+        RGBColor(31, 119, 180),
+        RGBColor(255, 127, 14),
+        RGBColor(44, 160, 44),
+        RGBColor(214, 39, 40),
+        RGBColor(148, 103, 189),
+        RGBColor(140, 86, 75),
+        RGBColor(227, 119, 194),
+        RGBColor(90, 90, 90),
+    ];
+    C[i % C.len()]
+}
+
+pub(crate) const THREAT: RGBColor = RGBColor(200, 0, 0);
+pub(crate) const THREAT_DARK: RGBColor = RGBColor(140, 0, 0);
+pub(crate) const INTERFERENCE: RGBColor = RGBColor(120, 60, 200);
+pub(crate) const DIRECT: RGBColor = RGBColor(60, 170, 80);
+pub(crate) const RELAYED: RGBColor = RGBColor(240, 180, 30);
+pub(crate) const OUT: RGBColor = RGBColor(215, 40, 40);
+pub(crate) const GRID: RGBColor = RGBColor(200, 200, 200);
+
+/// The terrain colour map at `t` in [0, 1] (low to high): muted green, sand, light brown,
+/// near white. Light on purpose, so paths and threats drawn over it stay visible.
+pub(crate) fn terrain_colour(t: f64) -> RGBColor {
+    const STOPS: [(f64, [f64; 3]); 5] = [
+        (0.0, [118.0, 166.0, 112.0]),
+        (0.25, [172.0, 200.0, 132.0]),
+        (0.5, [224.0, 214.0, 154.0]),
+        (0.75, [196.0, 164.0, 118.0]),
+        (1.0, [246.0, 242.0, 236.0]),
+    ];
+    let t = if t.is_finite() { t.clamp(0.0, 1.0) } else { 0.0 };
+    let k = STOPS
+        .windows(2)
+        .position(|w| t <= w[1].0)
+        .unwrap_or(STOPS.len() - 2);
+    let (t0, a) = STOPS[k];
+    let (t1, b) = STOPS[k + 1];
+    let f = (t - t0) / (t1 - t0);
+    let c = |i: usize| (a[i] + (b[i] - a[i]) * f).round() as u8;
+    RGBColor(c(0), c(1), c(2))
+}
+
+/// `c` with each channel multiplied by `f` (shading), clamped.
+pub(crate) fn shade(c: RGBColor, f: f64) -> RGBColor {
+    let s = |v: u8| (f64::from(v) * f).round().clamp(0.0, 255.0) as u8;
+    RGBColor(s(c.0), s(c.1), s(c.2))
+}
+
+/// `n` points on the circle of radius `r` around (cx, cy), closed (first point repeated).
+pub(crate) fn circle(cx: f64, cy: f64, r: f64, n: usize) -> Vec<(f64, f64)> {
+    (0..=n)
+        .map(|k| {
+            let a = std::f64::consts::TAU * k as f64 / n as f64;
+            (cx + r * a.cos(), cy + r * a.sin())
+        })
+        .collect()
+}
+
+/// Cuts the polyline `pts` into dashes `dash` long with gaps `gap` (same units as the
+/// points), for dashed outlines in data units.
+pub(crate) fn dashes(pts: &[(f64, f64)], dash: f64, gap: f64) -> Vec<Vec<(f64, f64)>> {
+    let mut out = Vec::new();
+    if pts.len() < 2 || dash <= 0.0 || gap < 0.0 {
+        return out;
+    }
+    let period = dash + gap;
+    let mut cur: Vec<(f64, f64)> = vec![pts[0]];
+    // Position within the current period at the start of each segment.
+    let mut phase = 0.0;
+    for w in pts.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let len = (b.0 - a.0).hypot(b.1 - a.1);
+        let at = |s: f64| {
+            let f = if len > 0.0 { s / len } else { 0.0 };
+            (a.0 + (b.0 - a.0) * f, a.1 + (b.1 - a.1) * f)
+        };
+        let mut s = 0.0;
+        while s < len {
+            let drawing = phase < dash;
+            let left = if drawing { dash - phase } else { period - phase };
+            let step = left.min(len - s);
+            s += step;
+            phase += step;
+            if drawing {
+                cur.push(at(s));
+                if phase >= dash {
+                    out.push(std::mem::take(&mut cur));
+                }
+            } else if phase >= period {
+                phase = 0.0;
+                cur = vec![at(s)];
+            }
+        }
+    }
+    if cur.len() >= 2 && phase < dash {
+        out.push(cur);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn colour_map_ends_and_clamps() {
+        assert_eq!(terrain_colour(0.0), RGBColor(118, 166, 112));
+        assert_eq!(terrain_colour(1.0), RGBColor(246, 242, 236));
+        assert_eq!(terrain_colour(-3.0), terrain_colour(0.0));
+        assert_eq!(terrain_colour(f64::NAN), terrain_colour(0.0));
+    }
+
+    #[test]
+    fn dashes_cover_the_dash_share_of_a_line() {
+        let d = dashes(&[(0.0, 0.0), (10.0, 0.0), (10.0, 10.0)], 2.0, 1.0);
+        let drawn: f64 = d
+            .iter()
+            .map(|p| {
+                p.windows(2)
+                    .map(|w| (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1))
+                    .sum::<f64>()
+            })
+            .sum();
+        // 20 units: six full periods (12 drawn) and a last dash of 2.
+        assert!((drawn - 14.0).abs() < 1e-9, "drawn {drawn}");
+        assert_eq!(d.len(), 7);
+    }
+
+    #[test]
+    fn scale_keeps_fonts_legible() {
+        let s = Scale::of((400, 300));
+        assert!(s.font(16.0) >= 9.0);
+        assert_eq!(Scale::of((1200, 900)).px(10.0), 10);
+    }
+}
