@@ -119,9 +119,9 @@ fn figures(dir: &Path) -> Result<String> {
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default();
-        let _ = write!(
+        let _ = writeln!(
             s,
-            "<figure>{body}<figcaption>{}</figcaption></figure>\n",
+            "<figure>{body}<figcaption>{}</figcaption></figure>",
             escape(&name)
         );
     }
