@@ -26,6 +26,7 @@ mod contour;
 mod convergence_bench;
 mod convergence_run;
 mod legend;
+mod records;
 mod render;
 mod sampling;
 mod stats;

@@ -8,7 +8,6 @@
 use std::sync::OnceLock;
 
 use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::FontStyle;
 
 /// The family every text uses. plotters' `ab_glyph` engine looks fonts up by this name,
@@ -72,14 +71,12 @@ impl Scale {
     pub(crate) fn legend(self) -> TextStyle<'static> {
         (FONT, self.font(16.0)).into_font().into()
     }
+    pub(crate) fn heading(self) -> TextStyle<'static> {
+        (FONT, self.font(17.0), FontStyle::Bold).into_font().into()
+    }
     pub(crate) fn note(self) -> TextStyle<'static> {
         (FONT, self.font(14.0)).into_font().into()
     }
-}
-
-/// A text style centred on its anchor.
-pub(crate) fn centred(style: TextStyle<'static>) -> TextStyle<'static> {
-    style.pos(Pos::new(HPos::Center, VPos::Center))
 }
 
 /// Strong, mutually distinct colours for UAV paths, chosen to stand out on the light

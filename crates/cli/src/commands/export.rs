@@ -1,0 +1,129 @@
+//! `swarmplan export DIR`: a planned mission in WGS 84 for autopilots and GIS, from the
+//! `plan.json` and `scenario.toml` that `plan` writes into DIR; and [`export_planned`],
+//! which `plan --export` calls. Formats and altitude references: `docs/export.md`.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+use clap::Args;
+use swarmplan_core::plan::Plan;
+use swarmplan_core::world::World;
+use swarmplan_io::export::{write_mission, ExportFormat, Mission};
+use swarmplan_io::geo::{load_spec_with_origin, parse_lat_lon_alt, resolve_frame, FrameSource};
+use swarmplan_io::plan_file::read_plan;
+use swarmplan_io::scenario::build_world;
+
+#[derive(Debug, Args)]
+pub struct ExportArgs {
+    /// Folder written by `swarmplan plan` (holds plan.json and scenario.toml).
+    pub dir: PathBuf,
+    /// Formats, comma-separated: qgc-plan, wpl, geojson, kml, csv, or all.
+    #[arg(long, default_value = "all")]
+    pub format: String,
+    /// Output folder (default: DIR).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Geodetic origin of local (0, 0): LAT,LON[,ALT] in degrees and metres AMSL of local
+    /// height 0; overrides the scenario's `[geo] origin` and the terrain file's CRS.
+    #[arg(long, allow_hyphen_values = true)]
+    pub origin: Option<String>,
+    /// Terrain file, when the scenario's terrain path does not resolve from DIR.
+    #[arg(long)]
+    pub terrain: Option<PathBuf>,
+    /// Plan file (default: DIR/plan.json).
+    #[arg(long)]
+    pub plan: Option<PathBuf>,
+    /// Scenario (built-in name or file; default: DIR/scenario.toml).
+    #[arg(long)]
+    pub scenario: Option<String>,
+}
+
+/// The terrain file to use: `--terrain`, else the scenario's source when it does not
+/// resolve from the scenario's folder but does from the current one (`plan` writes the
+/// source as it resolved it from where it ran).
+fn terrain_override(
+    loaded: &swarmplan_io::scenario::LoadedSpec,
+    flag: Option<&Path>,
+) -> Option<PathBuf> {
+    if let Some(p) = flag {
+        return Some(p.to_path_buf());
+    }
+    let source = &loaded.spec.terrain.source;
+    if source == "procedural" {
+        return None;
+    }
+    let from_dir = loaded.base_dir.join(source);
+    let here = PathBuf::from(source);
+    (!from_dir.exists() && here.exists()).then_some(here)
+}
+
+/// Converts `plan` and writes `formats` into `out`; prints nothing.
+fn write_all(
+    world: &World,
+    plan: &Plan,
+    frame: &swarmplan_io::geo::LocalFrame,
+    formats: &[ExportFormat],
+    out: &Path,
+) -> Result<Vec<PathBuf>> {
+    let mission = Mission::new(world, plan, frame)?;
+    let mut files = Vec::new();
+    for f in formats {
+        files.extend(write_mission(&mission, *f, out)?);
+    }
+    Ok(files)
+}
+
+pub fn run(args: &ExportArgs) -> Result<()> {
+    let formats = ExportFormat::parse_list(&args.format)?;
+    let explicit = args
+        .origin
+        .as_deref()
+        .map(|o| parse_lat_lon_alt(o, "--origin"))
+        .transpose()?;
+    let scenario = match &args.scenario {
+        Some(s) => s.clone(),
+        None => args.dir.join("scenario.toml").display().to_string(),
+    };
+    let (loaded, origin) = load_spec_with_origin(&scenario)
+        .with_context(|| format!("{}: the scenario of the plan", args.dir.display()))?;
+    let terrain = terrain_override(&loaded, args.terrain.as_deref());
+    let world = build_world(&loaded, terrain.as_deref())?;
+    let plan_path = args.plan.clone().unwrap_or_else(|| args.dir.join("plan.json"));
+    let plan = read_plan(&plan_path, &world)?;
+    let (frame, source) = resolve_frame(&loaded, origin, terrain.as_deref(), explicit)?;
+    let out = args.out.clone().unwrap_or_else(|| args.dir.clone());
+    let files = write_all(&world, &plan, &frame, &formats, &out)?;
+    eprintln!("{}", georeferenced_by(source, &frame));
+    for f in &files {
+        println!("{}", f.display());
+    }
+    Ok(())
+}
+
+fn georeferenced_by(source: FrameSource, frame: &swarmplan_io::geo::LocalFrame) -> String {
+    format!("georeferenced by {}: {}", source.describe(), frame.describe())
+}
+
+/// `plan --export FORMATS [--origin LAT,LON[,ALT]]`: exports the plan just made into
+/// `out`. `scenario` and `terrain` are the plan command's `--scenario` and `--terrain`.
+/// Writes only to stderr (one line on the georeferencing), so `plan --json` stays clean;
+/// returns the files written.
+pub fn export_planned(
+    scenario: &str,
+    terrain: Option<&Path>,
+    world: &World,
+    plan: &Plan,
+    formats: &str,
+    origin: Option<&str>,
+    out: &Path,
+) -> Result<Vec<PathBuf>> {
+    let formats = ExportFormat::parse_list(formats)?;
+    let explicit = origin
+        .map(|o| parse_lat_lon_alt(o, "--origin"))
+        .transpose()?;
+    let (loaded, scenario_origin) = load_spec_with_origin(scenario)?;
+    let (frame, source) = resolve_frame(&loaded, scenario_origin, terrain, explicit)?;
+    let files = write_all(world, plan, &frame, &formats, out)?;
+    eprintln!("{}", georeferenced_by(source, &frame));
+    Ok(files)
+}

@@ -1,0 +1,101 @@
+//! `swarmplan plot DIR`: draws the figures of a `plan` folder (top view, 3-D view,
+//! convergence, communication timeline) or of a `bench` folder (box plots and FR bars,
+//! convergence across runs, per scenario), as PNG and SVG next to the records. `plan` and
+//! `bench` call the same functions when they finish.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+use clap::Args;
+use swarmplan_core::plan::Plan;
+use swarmplan_core::world::World;
+use swarmplan_experiment::record::RunRecord;
+use swarmplan_experiment::store::read_records;
+use swarmplan_io::plan_file::read_plan;
+use swarmplan_io::scenario::{build_world, load_spec};
+
+#[derive(Debug, Args)]
+pub struct PlotArgs {
+    /// A folder written by `plan` (plan.json, scenario.toml) or `bench` (runs.jsonl).
+    pub dir: PathBuf,
+}
+
+/// The figures of one plan; `title` names scenario, algorithm and seed.
+pub fn plan_figures(dir: &Path, world: &World, plan: &Plan, trace: &[f64], title: &str) -> Result<Vec<PathBuf>> {
+    let stem = |name: &str| dir.join(name);
+    swarmplan_plot::top_view(world, plan, title, &stem("top_view"))?;
+    swarmplan_plot::view_3d(world, plan, title, &stem("view_3d"))?;
+    swarmplan_plot::convergence_run(trace, None, title, &stem("convergence"))?;
+    swarmplan_plot::comm_timeline(world, plan, title, &stem("comm_timeline"))?;
+    Ok(["top_view", "view_3d", "convergence", "comm_timeline"]
+        .iter()
+        .map(|n| stem(n).with_extension("png"))
+        .collect())
+}
+
+/// The figures of a bench, one set per scenario.
+pub fn bench_figures(dir: &Path, records: &[RunRecord]) -> Result<Vec<PathBuf>> {
+    let mut scenarios: Vec<&str> = records.iter().map(|r| r.scenario.as_str()).collect();
+    scenarios.sort_unstable();
+    scenarios.dedup();
+    let mut out = Vec::new();
+    for sc in scenarios {
+        let safe: String = sc.chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' }).collect();
+        let boxes = dir.join(format!("bench_{safe}"));
+        swarmplan_plot::bench_boxplots(records, sc, &boxes)?;
+        let conv = dir.join(format!("convergence_{safe}"));
+        swarmplan_plot::convergence_bench(records, sc, &conv)?;
+        out.push(boxes.with_extension("png"));
+        out.push(conv.with_extension("png"));
+    }
+    Ok(out)
+}
+
+/// Reads `convergence.csv` (best_cost column) of a plan folder.
+fn read_trace(path: &Path) -> Result<Vec<f64>> {
+    let text = std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))?;
+    let mut lines = text.lines();
+    let header = lines.next().unwrap_or_default();
+    let col = header
+        .split(',')
+        .position(|h| h == "best_cost")
+        .with_context(|| format!("{}: no best_cost column in the header", path.display()))?;
+    lines
+        .enumerate()
+        .map(|(i, l)| {
+            l.split(',')
+                .nth(col)
+                .and_then(|v| v.parse::<f64>().ok())
+                .with_context(|| format!("{}: line {}: expected a number in column best_cost", path.display(), i + 2))
+        })
+        .collect()
+}
+
+pub fn run(args: &PlotArgs) -> Result<()> {
+    let dir = &args.dir;
+    let files = if dir.join("plan.json").exists() {
+        let scenario = dir.join("scenario.toml");
+        anyhow::ensure!(scenario.exists(), "{}: missing; `swarmplan plan --out {}` writes it", scenario.display(), dir.display());
+        let world = build_world(&load_spec(&scenario.display().to_string())?, None)?;
+        let plan = read_plan(&dir.join("plan.json"), &world)?;
+        let trace = read_trace(&dir.join("convergence.csv"))?;
+        let title = match std::fs::read_to_string(dir.join("run.json")) {
+            Ok(t) => {
+                let v: serde_json::Value = serde_json::from_str(&t).unwrap_or_default();
+                format!("{} - {} - seed {}", world.spec.name, v["algorithm"].as_str().unwrap_or("?"), v["seed"])
+            }
+            Err(_) => world.spec.name.clone(),
+        };
+        plan_figures(dir, &world, &plan, &trace, &title)?
+    } else if dir.join("runs.jsonl").exists() {
+        let records = read_records(dir, false)?;
+        anyhow::ensure!(!records.is_empty(), "{}: no run records", dir.join("runs.jsonl").display());
+        bench_figures(dir, &records)?
+    } else {
+        anyhow::bail!("{}: holds neither plan.json nor runs.jsonl", dir.display());
+    };
+    for f in files {
+        println!("wrote {} (and .svg)", f.display());
+    }
+    Ok(())
+}

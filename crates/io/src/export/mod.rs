@@ -1,0 +1,372 @@
+//! Mission exports: a plan in WGS 84 for autopilots, ground stations and GIS.
+//!
+//! Formats ([`ExportFormat`]): per UAV a QGroundControl `.plan` and a `QGC WPL 110`
+//! `.waypoints` file; for the fleet one GeoJSON FeatureCollection, one KML document and one
+//! CSV table. Every file states its altitude reference (`docs/export.md`): altitudes are
+//! metres above mean sea level (AMSL) = terrain height + height above ground (AGL), the
+//! terrain heights being taken as AMSL (plus the frame's altitude offset, 0 for DEMs).
+//!
+//! [`Mission`] converts the plan once (times and speeds from the scenario's timing policy,
+//! positions through a [`LocalFrame`]); each writer only formats it. Numbers are written
+//! in Rust's shortest round-trip form, so a re-import ([`crate::import`]) recovers the
+//! exact values that were written.
+
+mod csv;
+mod geojson;
+mod kml;
+mod qgc;
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+use std::str::FromStr;
+
+use glam::DVec3;
+use swarmplan_core::plan::Plan;
+use swarmplan_core::timing::TimedPlan;
+use swarmplan_core::world::World;
+use thiserror::Error;
+
+use crate::geo::{GeoError, Geodetic, LocalFrame};
+
+/// The sentence every export uses for its altitudes.
+pub const ALTITUDE_REFERENCE: &str = "altitudes are metres above mean sea level (AMSL) = \
+     terrain height + height above ground (AGL); terrain heights are taken as AMSL";
+
+/// Vertices of the polygon drawn for a threat circle (a closing vertex is added).
+pub const CIRCLE_VERTICES: usize = 72;
+
+/// An export format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ExportFormat {
+    /// QGroundControl plan (JSON), one per UAV: `uavN.plan`.
+    QgcPlan,
+    /// `QGC WPL 110` waypoint text, one per UAV: `uavN.waypoints`.
+    Wpl,
+    /// One GeoJSON FeatureCollection: `mission.geojson`.
+    GeoJson,
+    /// One KML document: `mission.kml`.
+    Kml,
+    /// One CSV table with a `uav` column: `mission.csv`.
+    Csv,
+}
+
+impl ExportFormat {
+    pub const ALL: [Self; 5] = [Self::QgcPlan, Self::Wpl, Self::GeoJson, Self::Kml, Self::Csv];
+
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::QgcPlan => "qgc-plan",
+            Self::Wpl => "wpl",
+            Self::GeoJson => "geojson",
+            Self::Kml => "kml",
+            Self::Csv => "csv",
+        }
+    }
+
+    /// A comma-separated list of format names, or `all`.
+    pub fn parse_list(text: &str) -> Result<Vec<Self>, ExportError> {
+        let mut out = Vec::new();
+        for part in text.split(',').map(str::trim) {
+            if part.eq_ignore_ascii_case("all") {
+                out.extend(Self::ALL);
+            } else {
+                out.push(part.parse()?);
+            }
+        }
+        let mut seen = Vec::new();
+        out.retain(|f| {
+            let new = !seen.contains(f);
+            seen.push(*f);
+            new
+        });
+        Ok(out)
+    }
+}
+
+impl fmt::Display for ExportFormat {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for ExportFormat {
+    type Err = ExportError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let s = s.trim().to_ascii_lowercase();
+        Self::ALL
+            .into_iter()
+            .find(|f| f.name() == s)
+            .or(match s.as_str() {
+                "plan" | "qgc" => Some(Self::QgcPlan),
+                "waypoints" | "qgc-wpl" => Some(Self::Wpl),
+                "json" => Some(Self::GeoJson),
+                _ => None,
+            })
+            .ok_or(ExportError::Format(s))
+    }
+}
+
+#[derive(Debug, Error)]
+pub enum ExportError {
+    #[error("{}: cannot write: {source}", path.display())]
+    Write {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error(transparent)]
+    Geo(#[from] GeoError),
+    #[error("--format: expected qgc-plan, wpl, geojson, kml, csv or all, got `{0}`")]
+    Format(String),
+    #[error("plan: {0}")]
+    Plan(String),
+}
+
+/// One waypoint of a mission.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MissionPoint {
+    /// Plan coordinates [x, y, z above ground].
+    pub local: DVec3,
+    /// WGS 84 latitude, longitude; `alt_m` is the altitude AMSL.
+    pub geo: Geodetic,
+    /// Height above ground, metres (the plan's z).
+    pub alt_agl_m: f64,
+    /// Terrain altitude AMSL below the point, metres.
+    pub ground_amsl_m: f64,
+    /// Time of arrival, seconds after departure.
+    pub time_s: f64,
+}
+
+/// One UAV's path.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MissionPath {
+    pub uav: usize,
+    pub points: Vec<MissionPoint>,
+    /// Constant planned speed, m/s.
+    pub speed_mps: f64,
+    /// 3-D length with absolute altitudes, metres.
+    pub length_m: f64,
+    /// Drone size (hard zone margin of threats), metres.
+    pub size_m: f64,
+}
+
+/// A threat cylinder in WGS 84.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MissionThreat {
+    pub index: usize,
+    /// Axis in plan coordinates, metres.
+    pub x: f64,
+    pub y: f64,
+    /// Radius, metres.
+    pub r: f64,
+    /// Drawn height above ground, metres (threats are unbounded in height).
+    pub draw_height_m: f64,
+    /// Axis position; `alt_m` is the ground altitude AMSL there.
+    pub center: Geodetic,
+    /// The circle of radius `r` as a closed ring, counter-clockwise (first = last).
+    pub ring: Vec<Geodetic>,
+}
+
+/// A plan converted to WGS 84, ready for the writers.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mission {
+    pub scenario: String,
+    /// [`LocalFrame::describe`] of the frame used.
+    pub frame: String,
+    pub paths: Vec<MissionPath>,
+    pub threats: Vec<MissionThreat>,
+    /// UGV0's position on the ground (altitude = ground AMSL).
+    pub goal: Geodetic,
+}
+
+impl Mission {
+    /// Converts `plan` (checked against `world`: one path per UAV, >= 2 finite waypoints).
+    pub fn new(world: &World, plan: &Plan, frame: &LocalFrame) -> Result<Self, ExportError> {
+        let n = world.uav_count();
+        if plan.uavs.len() != n {
+            return Err(ExportError::Plan(format!(
+                "scenario `{}` has {n} UAVs, the plan has {}",
+                world.spec.name,
+                plan.uavs.len()
+            )));
+        }
+        for (i, p) in plan.uavs.iter().enumerate() {
+            if p.waypoints.len() < 2 {
+                return Err(ExportError::Plan(format!(
+                    "uavs[{i}]: expected at least 2 waypoints, got {}",
+                    p.waypoints.len()
+                )));
+            }
+            if let Some(k) = p.waypoints.iter().position(|w| !w.is_finite()) {
+                return Err(ExportError::Plan(format!(
+                    "uavs[{i}].waypoints[{k}]: not finite: {}",
+                    p.waypoints[k]
+                )));
+            }
+        }
+        let offset = frame.altitude_offset();
+        let ground = |x: f64, y: f64| world.terrain.height(x, y) + offset;
+        let timed = TimedPlan::new(world, plan);
+        let mut paths = Vec::with_capacity(n);
+        for (i, (p, tp)) in plan.uavs.iter().zip(&timed.paths).enumerate() {
+            let points = p
+                .waypoints
+                .iter()
+                .enumerate()
+                .map(|(k, w)| {
+                    Ok(MissionPoint {
+                        local: *w,
+                        geo: frame.to_geodetic(tp.abs[k])?,
+                        alt_agl_m: w.z,
+                        ground_amsl_m: ground(w.x, w.y),
+                        time_s: tp.time_at(k),
+                    })
+                })
+                .collect::<Result<Vec<_>, GeoError>>()?;
+            paths.push(MissionPath {
+                uav: i,
+                points,
+                speed_mps: tp.speed,
+                length_m: tp.length,
+                size_m: world.spec.uavs[i].size,
+            });
+        }
+        let mut threats = Vec::with_capacity(world.spec.threats.len());
+        for (index, t) in world.spec.threats.iter().enumerate() {
+            let h = world.terrain.height(t.x, t.y);
+            let ring = (0..=CIRCLE_VERTICES)
+                .map(|k| {
+                    // The last vertex repeats the first exactly (a closed ring).
+                    let a = std::f64::consts::TAU * (k % CIRCLE_VERTICES) as f64
+                        / CIRCLE_VERTICES as f64;
+                    frame.to_geodetic(DVec3::new(t.x + t.r * a.cos(), t.y + t.r * a.sin(), h))
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            threats.push(MissionThreat {
+                index,
+                x: t.x,
+                y: t.y,
+                r: t.r,
+                draw_height_m: t.z,
+                center: frame.to_geodetic(DVec3::new(t.x, t.y, h))?,
+                ring,
+            });
+        }
+        let g = world.goal;
+        Ok(Self {
+            scenario: world.spec.name.clone(),
+            frame: frame.describe(),
+            paths,
+            threats,
+            goal: frame.to_geodetic(DVec3::new(g.x, g.y, world.terrain.height(g.x, g.y)))?,
+        })
+    }
+
+    /// One line naming the scenario, the frame and the altitude reference, for headers
+    /// (no line breaks, whatever the scenario's name holds).
+    #[must_use]
+    pub fn header(&self) -> String {
+        let name: String = self
+            .scenario
+            .chars()
+            .map(|c| if c.is_control() { ' ' } else { c })
+            .collect();
+        format!(
+            "swarmplan mission, scenario `{name}`; WGS 84 latitude and longitude in degrees; \
+             {ALTITUDE_REFERENCE}; frame: {}",
+            self.frame
+        )
+    }
+}
+
+/// Converts `plan` and writes `format` into `out_dir` (created if missing); returns the
+/// files written.
+pub fn export_plan(
+    world: &World,
+    plan: &Plan,
+    frame: &LocalFrame,
+    format: ExportFormat,
+    out_dir: &Path,
+) -> Result<Vec<PathBuf>, ExportError> {
+    let mission = Mission::new(world, plan, frame)?;
+    write_mission(&mission, format, out_dir)
+}
+
+/// Writes one format of an already converted mission into `out_dir`.
+pub fn write_mission(
+    mission: &Mission,
+    format: ExportFormat,
+    out_dir: &Path,
+) -> Result<Vec<PathBuf>, ExportError> {
+    std::fs::create_dir_all(out_dir).map_err(|source| ExportError::Write {
+        path: out_dir.to_path_buf(),
+        source,
+    })?;
+    let files: Vec<(String, String)> = match format {
+        ExportFormat::QgcPlan => mission
+            .paths
+            .iter()
+            .map(|p| (format!("uav{}.plan", p.uav), qgc::plan_json(mission, p)))
+            .collect(),
+        ExportFormat::Wpl => mission
+            .paths
+            .iter()
+            .map(|p| (format!("uav{}.waypoints", p.uav), qgc::wpl(p)))
+            .collect(),
+        ExportFormat::GeoJson => vec![("mission.geojson".into(), geojson::geojson(mission))],
+        ExportFormat::Kml => vec![("mission.kml".into(), kml::kml(mission))],
+        ExportFormat::Csv => vec![("mission.csv".into(), csv::csv(mission))],
+    };
+    let mut written = Vec::with_capacity(files.len());
+    for (name, text) in files {
+        let path = out_dir.join(name);
+        std::fs::write(&path, text).map_err(|source| ExportError::Write {
+            path: path.clone(),
+            source,
+        })?;
+        written.push(path);
+    }
+    Ok(written)
+}
+
+/// Shortest round-trip decimal text of a number (never exponent notation).
+pub(crate) fn num(v: f64) -> String {
+    if v == 0.0 {
+        "0".into() // also for -0.0
+    } else {
+        format!("{v}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn format_lists_parse() {
+        assert_eq!(
+            ExportFormat::parse_list("all").unwrap(),
+            ExportFormat::ALL.to_vec()
+        );
+        assert_eq!(
+            ExportFormat::parse_list("csv, KML,csv").unwrap(),
+            vec![ExportFormat::Csv, ExportFormat::Kml]
+        );
+        let e = ExportFormat::parse_list("csv,shp").unwrap_err().to_string();
+        assert!(e.contains("--format") && e.contains("shp"), "{e}");
+        for f in ExportFormat::ALL {
+            assert_eq!(f.name().parse::<ExportFormat>().unwrap(), f);
+        }
+    }
+
+    #[test]
+    fn numbers_round_trip_without_exponents() {
+        for v in [1e-7, -10.123_456_789_012_345, 105.6, 1e21, 0.1 + 0.2] {
+            let s = num(v);
+            assert!(!s.contains('e'), "{s}");
+            assert_eq!(s.parse::<f64>().unwrap(), v);
+        }
+        assert_eq!(num(-0.0), "0");
+    }
+}

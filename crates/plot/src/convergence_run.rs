@@ -1,0 +1,137 @@
+//! Convergence of one run: the best cost after initialisation (iteration 0) and after each
+//! iteration, for the whole plan and, when given, per UAV. Costs of plans with violations
+//! carry the penalty and can be orders of magnitude above feasible ones, so the cost axis
+//! turns logarithmic when the trace spans more than a factor of 8 (the axis says so).
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use crate::axis::{draw_mesh, format_value, Axis};
+use crate::records::cost;
+use crate::render::{no_data, render, DrawResult, Figure, PlotError, Target, Written};
+use crate::style::{self, Scale};
+
+/// Writes the convergence of one run to `out`: `trace[k]` is the best total cost after
+/// iteration k (k = 0: after initialisation); `per_uav`, when given, holds one series per
+/// UAV (`per_uav[i][k]`: UAV i's cost in the best plan after iteration k). Non-finite values
+/// (and `f64::MAX`, which records use for them) are left out of the lines.
+pub fn convergence_run(
+    trace: &[f64],
+    per_uav: Option<&[Vec<f64>]>,
+    title: &str,
+    out: impl Into<Target>,
+) -> Result<Written, PlotError> {
+    let target = out.into();
+    let per_uav = per_uav.unwrap_or(&[]);
+    let all = || trace.iter().chain(per_uav.iter().flatten()).map(|v| cost(*v));
+    if all().all(|v| !v.is_finite()) {
+        return Err(no_data(&target, "the convergence trace has no finite cost"));
+    }
+    let fig = ConvergenceRun {
+        trace,
+        per_uav,
+        title,
+        y: Axis::auto(all(), 0.05, false),
+    };
+    render(&fig, &target)
+}
+
+struct ConvergenceRun<'a> {
+    trace: &'a [f64],
+    per_uav: &'a [Vec<f64>],
+    title: &'a str,
+    y: Axis,
+}
+
+/// Maximal runs of finite values of `v` as (iteration, value) polylines.
+pub(crate) fn finite_runs(v: impl IntoIterator<Item = f64>) -> Vec<Vec<(f64, f64)>> {
+    let mut out: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut cur = Vec::new();
+    for (k, x) in v.into_iter().enumerate() {
+        let x = cost(x);
+        if x.is_finite() {
+            cur.push((k as f64, x));
+        } else if !cur.is_empty() {
+            out.push(std::mem::take(&mut cur));
+        }
+    }
+    if !cur.is_empty() {
+        out.push(cur);
+    }
+    out
+}
+
+/// The y description of a cost axis.
+pub(crate) fn cost_desc(what: &str, y: &Axis) -> String {
+    if y.is_log() {
+        format!("{what} (log scale)")
+    } else {
+        what.to_string()
+    }
+}
+
+impl Figure for ConvergenceRun<'_> {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<(), DB> {
+        let s = Scale::of(root.dim_in_pixel());
+        let body = root.titled(self.title, s.title())?;
+        let len = self
+            .per_uav
+            .iter()
+            .map(Vec::len)
+            .chain([self.trace.len()])
+            .max()
+            .unwrap_or(0);
+        let mut chart = ChartBuilder::on(&body)
+            .margin(s.px(20.0))
+            .margin_right(s.px(40.0))
+            .x_label_area_size(s.px(65.0))
+            .y_label_area_size(s.px(100.0))
+            .build_cartesian_2d(
+                Axis::linear(0.0, (len.max(2) - 1) as f64),
+                self.y.clone(),
+            )?;
+        draw_mesh(
+            &mut chart,
+            s,
+            "iteration (0 = after initialisation)",
+            &cost_desc("best cost (lower is better)", &self.y),
+        )?;
+
+        let mut series: Vec<(String, RGBColor, u32, &[f64])> = self
+            .per_uav
+            .iter()
+            .enumerate()
+            .map(|(i, v)| (format!("UAV {}", i + 1), style::uav_colour(i), s.px(2.0), &v[..]))
+            .collect();
+        if !self.trace.is_empty() {
+            series.push(("total".to_string(), BLACK, s.px(3.0), self.trace));
+        }
+        let key_len = s.off(24.0);
+        for (name, c, w, values) in series {
+            let mut runs = finite_runs(values.iter().copied());
+            let label = match runs.last().and_then(|r| r.last()) {
+                Some(p) => format!("{name} (final {})", format_value(p.1)),
+                None => name,
+            };
+            if runs.is_empty() {
+                runs.push(Vec::new());
+            }
+            for (k, r) in runs.into_iter().enumerate() {
+                let anno = chart.draw_series(LineSeries::new(r, c.stroke_width(w)))?;
+                if k == 0 {
+                    anno.label(label.clone()).legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + key_len, y)], c.stroke_width(w))
+                    });
+                }
+            }
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .margin(s.px(15.0))
+            .label_font(s.legend())
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK.mix(0.5))
+            .draw()
+    }
+}

@@ -1,0 +1,445 @@
+//! The map seen from above: terrain as a shaded colour relief with contour lines, threat
+//! cylinders as circles in data units (filled hard zone r + size, dashed danger band
+//! r + 11 size), interference disks, ground nodes, each UAV's path with its waypoints, and a
+//! mark wherever a UAV was out of contact (sampled at every communication step) with the
+//! times of each outage. A colour bar and the legend sit in a panel to the right.
+//!
+//! One metre east is one metre north on screen: the chart's margins are computed so that the
+//! plotting area has the map's aspect ratio ([`equal_aspect_margins`]).
+
+use plotters::coord::Shift;
+use plotters::element::BitMapElement;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use swarmplan_core::cost::comm::Contact;
+use swarmplan_core::plan::Plan;
+use swarmplan_core::world::World;
+
+use crate::axis::{format_value, Axis};
+use crate::contour::{interval, levels, Grid};
+use crate::legend::{self, draw_shape, Entry, Shape};
+use crate::render::{render, DrawResult, Figure, PlotError, Target, Written};
+use crate::sampling::ContactTrace;
+use crate::style::{self, Scale, FONT};
+
+/// Writes the top view of `plan` in `world` to `out` (PNG and SVG). `title` should name the
+/// scenario, algorithm and seed.
+pub fn top_view(
+    world: &World,
+    plan: &Plan,
+    title: &str,
+    out: impl Into<Target>,
+) -> Result<Written, PlotError> {
+    render(&TopView::new(world, plan, title), &out.into())
+}
+
+/// The danger band reaches this many drone sizes beyond the hard zone r + size (SPSO's J2).
+const DANGER_SIZES: f64 = 10.0;
+
+struct TopView<'a> {
+    world: &'a World,
+    plan: &'a Plan,
+    title: &'a str,
+    trace: ContactTrace,
+    x: (f64, f64),
+    y: (f64, f64),
+    /// Terrain height range of the colour map.
+    h: (f64, f64),
+    step: f64,
+    /// (level, segments).
+    contours: Vec<(f64, Vec<[(f64, f64); 2]>)>,
+}
+
+impl<'a> TopView<'a> {
+    fn new(world: &'a World, plan: &'a Plan, title: &'a str) -> Self {
+        let m = &world.spec.map;
+        let (mut x, mut y) = ((m.x[0], m.x[1]), (m.y[0], m.y[1]));
+        let points = plan
+            .uavs
+            .iter()
+            .flat_map(|p| p.waypoints.iter().map(|w| (w.x, w.y)))
+            .chain(world.ground_nodes.iter().map(|g| (g.position.x, g.position.y)));
+        for (px, py) in points.filter(|(a, b)| a.is_finite() && b.is_finite()) {
+            x = (x.0.min(px), x.1.max(px));
+            y = (y.0.min(py), y.1.max(py));
+        }
+        let t = &world.terrain;
+        let h = (t.min_height(), t.max_height());
+        let step = interval(h.0, h.1);
+        let cells = |a: f64, b: f64| (((b - a) / 4.0).ceil() as usize + 1).clamp(2, 260);
+        let grid = Grid::sample(x, y, (cells(x.0, x.1), cells(y.0, y.1)), |px, py| {
+            t.height(px, py)
+        });
+        let contours = levels(h.0, h.1, step)
+            .into_iter()
+            .map(|l| (l, grid.contour(l)))
+            .collect();
+        Self {
+            world,
+            plan,
+            title,
+            trace: ContactTrace::new(world, plan),
+            x,
+            y,
+            h,
+            step,
+            contours,
+        }
+    }
+
+    /// RGB pixels of the shaded relief for a plotting area of `w` x `h` pixels.
+    fn relief(&self, w: usize, h: usize) -> Vec<u8> {
+        let t = &self.world.terrain;
+        let (dx, dy) = (self.x.1 - self.x.0, self.y.1 - self.y.0);
+        let heights: Vec<f64> = (0..h)
+            .flat_map(|j| {
+                let py = self.y.1 - (j as f64 + 0.5) / h as f64 * dy;
+                (0..w).map(move |i| (self.x.0 + (i as f64 + 0.5) / w as f64 * dx, py))
+            })
+            .map(|(px, py)| t.height(px, py))
+            .collect();
+        let (sx, sy) = (dx / w as f64, dy / h as f64);
+        let span = (self.h.1 - self.h.0).max(1e-9);
+        // Light from the north-west, 45 degrees up; flat ground keeps its colour.
+        let light = glam::DVec3::new(-0.5, 0.5, std::f64::consts::FRAC_1_SQRT_2);
+        let mut buf = Vec::with_capacity(w * h * 3);
+        for j in 0..h {
+            for i in 0..w {
+                let at = |a: usize, b: usize| heights[b * w + a];
+                let (il, ir) = (i.saturating_sub(1), (i + 1).min(w - 1));
+                let (jn, js) = (j.saturating_sub(1), (j + 1).min(h - 1));
+                let dzdx = (at(ir, j) - at(il, j)) / (sx * (ir - il).max(1) as f64);
+                // Rows run southwards, so north is towards smaller j.
+                let dzdy = (at(i, jn) - at(i, js)) / (sy * (js - jn).max(1) as f64);
+                let n = glam::DVec3::new(-dzdx, -dzdy, 1.0).normalize();
+                let lambert = n.dot(light).max(0.0);
+                let f = (1.0 + 0.6 * (lambert - light.z)).clamp(0.7, 1.15);
+                let c = style::shade(style::terrain_colour((at(i, j) - self.h.0) / span), f);
+                buf.extend_from_slice(&[c.0, c.1, c.2]);
+            }
+        }
+        buf
+    }
+
+    fn legend_entries(&self, s: Scale) -> Vec<Entry> {
+        let w = s.px(3.0);
+        let mut e: Vec<Entry> = (0..self.plan.uavs.len())
+            .map(|i| Entry::line(format!("UAV {}", i + 1), style::uav_colour(i), w))
+            .collect();
+        e.push(Entry::marker("waypoint", Shape::Dot, RGBColor(90, 90, 90)));
+        e.push(Entry::marker(
+            "out of contact (t, s)",
+            Shape::RingCross,
+            RGBColor(60, 60, 60),
+        ));
+        e.push(Entry::patch(
+            "threat: r + size",
+            style::THREAT.mix(0.35),
+            style::THREAT_DARK,
+        ));
+        e.push(Entry::dashed(
+            "danger band: r + 11 size",
+            style::THREAT_DARK,
+            s.px(2.0),
+        ));
+        if !self.world.channel.interference().is_empty() {
+            e.push(Entry::dashed(
+                "interference window",
+                style::INTERFERENCE,
+                s.px(2.0),
+            ));
+        }
+        for g in &self.world.ground_nodes {
+            e.push(Entry::marker(g.name.clone(), node_shape(&g.name), BLACK));
+        }
+        e.push(Entry::line(
+            format!("contour, every {} m", format_value(self.step)),
+            RGBColor(90, 70, 50),
+            1,
+        ));
+        e
+    }
+
+    fn draw_colour_bar<DB: DrawingBackend>(
+        &self,
+        area: &DrawingArea<DB, Shift>,
+        s: Scale,
+    ) -> DrawResult<(), DB> {
+        let mut bar = ChartBuilder::on(area)
+            .margin_top(s.px(30.0))
+            .margin_bottom(s.px(10.0))
+            .margin_left(s.px(30.0))
+            .margin_right(s.px(10.0))
+            .right_y_label_area_size(s.px(110.0))
+            .build_cartesian_2d(Axis::linear(0.0, 1.0), Axis::linear(self.h.0, self.h.1))?;
+        bar.configure_mesh()
+            .disable_x_mesh()
+            .disable_y_mesh()
+            .disable_x_axis()
+            .y_labels(8)
+            .label_style(s.tick())
+            .axis_desc_style(s.axis_desc())
+            .y_desc("terrain height, m")
+            .draw()?;
+        let n = 120;
+        let span = self.h.1 - self.h.0;
+        bar.draw_series((0..n).map(|k| {
+            let a = self.h.0 + span * k as f64 / n as f64;
+            let b = self.h.0 + span * (k + 1) as f64 / n as f64;
+            let c = style::terrain_colour((k as f64 + 0.5) / n as f64);
+            Rectangle::new([(0.0, a), (1.0, b)], c.filled())
+        }))?;
+        bar.draw_series(self.contours.iter().map(|(l, _)| {
+            PathElement::new(vec![(0.0, *l), (1.0, *l)], RGBColor(90, 70, 50).stroke_width(1))
+        }))?;
+        Ok(())
+    }
+}
+
+fn node_shape(name: &str) -> Shape {
+    match name {
+        "GCS" => Shape::Triangle,
+        "UGV0" => Shape::Square,
+        _ => Shape::Dot,
+    }
+}
+
+/// Margins (left, right, top, bottom) of a chart on a `w` x `h` px area whose plotting area
+/// shows `dx` x `dy` data units at one scale, given the left and bottom label areas `yl` and
+/// `xl` and a least margin `m` on every side.
+pub(crate) fn equal_aspect_margins(
+    (w, h): (u32, u32),
+    (dx, dy): (f64, f64),
+    (yl, xl): (u32, u32),
+    m: u32,
+) -> [u32; 4] {
+    let aw = f64::from(w.saturating_sub(yl + 2 * m));
+    let ah = f64::from(h.saturating_sub(xl + 2 * m));
+    if !(dx > 0.0 && dy > 0.0 && aw > 0.0 && ah > 0.0) {
+        return [m; 4];
+    }
+    let s = (aw / dx).min(ah / dy);
+    let ew = (aw - (dx * s).round()).max(0.0) as u32;
+    let eh = (ah - (dy * s).round()).max(0.0) as u32;
+    [m + ew / 2, m + ew - ew / 2, m + eh / 2, m + eh - eh / 2]
+}
+
+impl Figure for TopView<'_> {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<(), DB> {
+        let s = Scale::of(root.dim_in_pixel());
+        let body = root.titled(self.title, s.title())?;
+        let (w, h) = body.dim_in_pixel();
+        let side_w = s.px(290.0).min(w / 3);
+        let (map_area, side) = body.split_horizontally(w - side_w);
+        let (yl, xl) = (s.px(85.0), s.px(65.0));
+        let [ml, mr, mt, mb] = equal_aspect_margins(
+            map_area.dim_in_pixel(),
+            (self.x.1 - self.x.0, self.y.1 - self.y.0),
+            (yl, xl),
+            s.px(12.0),
+        );
+        let mut chart = ChartBuilder::on(&map_area)
+            .margin_left(ml)
+            .margin_right(mr)
+            .margin_top(mt)
+            .margin_bottom(mb)
+            .y_label_area_size(yl)
+            .x_label_area_size(xl)
+            .build_cartesian_2d(
+                Axis::linear(self.x.0, self.x.1),
+                Axis::linear(self.y.0, self.y.1),
+            )?;
+
+        // Relief first, then axes, then everything else on top.
+        let (px, py) = chart.plotting_area().get_pixel_range();
+        let (pw, ph) = ((px.end - px.start).max(1), (py.end - py.start).max(1));
+        let relief = BitMapElement::with_owned_buffer(
+            (self.x.0, self.y.1),
+            (pw as u32, ph as u32),
+            self.relief(pw as usize, ph as usize),
+        )
+        .expect("the relief buffer holds width x height RGB pixels");
+        chart.plotting_area().draw(&relief)?;
+        chart
+            .configure_mesh()
+            .disable_x_mesh()
+            .disable_y_mesh()
+            .x_labels(10)
+            .y_labels(10)
+            .label_style(s.tick())
+            .axis_desc_style(s.axis_desc())
+            .x_desc("x (east), m")
+            .y_desc("y (north), m")
+            .draw()?;
+
+        let contour_colour = RGBColor(90, 70, 50);
+        for (l, segs) in &self.contours {
+            // Every fourth level (100 m at 25 m spacing) is an index contour, drawn bolder.
+            let index = ((l / self.step).round() as i64) % 4 == 0;
+            let style = if index {
+                contour_colour.mix(0.8).stroke_width(s.px(1.6))
+            } else {
+                contour_colour.mix(0.45).stroke_width(1)
+            };
+            chart.draw_series(segs.iter().map(|q| PathElement::new(q.to_vec(), style)))?;
+        }
+
+        let span = (self.x.1 - self.x.0).max(self.y.1 - self.y.0);
+        let (dash, gap) = (span / 120.0, span / 200.0);
+        for (k, win) in self.world.channel.interference().iter().enumerate() {
+            let ring = style::circle(win.center[0], win.center[1], win.radius, 120);
+            chart.draw_series(
+                style::dashes(&ring, dash * 0.6, gap)
+                    .into_iter()
+                    .map(|d| PathElement::new(d, style::INTERFERENCE.stroke_width(s.px(2.5)))),
+            )?;
+            let label = format!(
+                "W{}: {}-{} s, {} dB",
+                k + 1,
+                format_value(win.time[0]),
+                format_value(win.time[1]),
+                format_value(win.loss_db)
+            );
+            let text = s
+                .note()
+                .color(&style::INTERFERENCE)
+                .pos(Pos::new(HPos::Center, VPos::Bottom));
+            chart.draw_series(std::iter::once(Text::new(
+                label,
+                (win.center[0], win.center[1] + win.radius),
+                text,
+            )))?;
+        }
+
+        let size = |i: usize| self.world.spec.uavs.get(i).map_or(1.0, |u| u.size);
+        let drone = (0..self.world.uav_count()).map(size).fold(0.0, f64::max);
+        for th in &self.world.spec.threats {
+            let hard = style::circle(th.x, th.y, th.r + drone, 96);
+            let band = style::circle(th.x, th.y, th.r + (1.0 + DANGER_SIZES) * drone, 96);
+            chart.draw_series(style::dashes(&band, dash, gap).into_iter().map(|d| {
+                PathElement::new(d, style::THREAT_DARK.mix(0.9).stroke_width(s.px(2.0)))
+            }))?;
+            chart.draw_series(std::iter::once(Polygon::new(
+                hard.clone(),
+                style::THREAT.mix(0.35).filled(),
+            )))?;
+            chart.draw_series(std::iter::once(PathElement::new(
+                hard,
+                style::THREAT_DARK.stroke_width(s.px(2.0)),
+            )))?;
+        }
+
+        for (i, path) in self.plan.uavs.iter().enumerate() {
+            let c = style::uav_colour(i);
+            let pts: Vec<(f64, f64)> = path.waypoints.iter().map(|p| (p.x, p.y)).collect();
+            chart.draw_series(std::iter::once(PathElement::new(
+                pts.clone(),
+                c.stroke_width(s.px(3.0)),
+            )))?;
+            chart.draw_series(
+                pts.iter()
+                    .map(|p| Circle::new(*p, s.px(4.5), c.filled())),
+            )?;
+        }
+
+        // Outages: a mark at every step out of contact, the times once per outage.
+        let area = chart.plotting_area();
+        for i in 0..self.trace.uav_count() {
+            let c = style::uav_colour(i);
+            for run in self.trace.runs(i) {
+                if run.status != Contact::Out {
+                    continue;
+                }
+                for k in run.first..=run.last {
+                    let p = self.trace.positions[k][i];
+                    let at = chart.backend_coord(&(p.x, p.y));
+                    draw_mark(root, at, c, s)?;
+                }
+                let p = self.trace.positions[run.first][i];
+                let (t0, t1) = (self.trace.times[run.first], self.trace.times[run.last]);
+                let label = if run.first == run.last {
+                    format!("t {} s", format_value(t0))
+                } else {
+                    format!("t {}-{} s", format_value(t0), format_value(t1))
+                };
+                let text = (FONT, s.font(15.0))
+                    .into_font()
+                    .color(&style::shade(c, 0.8))
+                    .pos(Pos::new(HPos::Left, VPos::Bottom));
+                area.draw(
+                    &(EmptyElement::at((p.x, p.y))
+                        + Text::new(label, (s.off(8.0), -s.off(6.0)), text)),
+                )?;
+            }
+        }
+
+        for g in &self.world.ground_nodes {
+            let at = chart.backend_coord(&(g.position.x, g.position.y));
+            draw_shape(root, at, s.off(9.0), node_shape(&g.name), BLACK, s)?;
+            let text = (FONT, s.font(18.0))
+                .into_font()
+                .color(&BLACK)
+                .pos(Pos::new(HPos::Left, VPos::Top));
+            area.draw(
+                &(EmptyElement::at((g.position.x, g.position.y))
+                    + Text::new(g.name.clone(), (s.off(11.0), s.off(6.0)), text)),
+            )?;
+        }
+
+        // Side panel: colour bar above, legend below.
+        let (_, sh) = side.dim_in_pixel();
+        let (bar, rest) = side.split_vertically(sh * 2 / 5);
+        self.draw_colour_bar(&bar, s)?;
+        legend::draw(&rest, &self.legend_entries(s), s.off(10.0), s)
+    }
+}
+
+/// The out-of-contact mark at pixel `at` (root coordinates).
+fn draw_mark<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    at: (i32, i32),
+    c: RGBColor,
+    s: Scale,
+) -> DrawResult<(), DB> {
+    draw_shape(root, at, s.off(6.0), Shape::RingCross, c, s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn margins_make_the_plotting_area_proportional() {
+        let [l, r, t, b] = equal_aspect_margins((900, 800), (1045.0, 879.0), (80, 60), 10);
+        let pw = 900 - 80 - l - r;
+        let ph = 800 - 60 - t - b;
+        let ratio = f64::from(pw) / f64::from(ph);
+        assert!((ratio - 1045.0 / 879.0).abs() < 0.005, "{pw} x {ph}");
+        // A tall map in a wide area: the width shrinks instead.
+        let [l, r, _, _] = equal_aspect_margins((900, 800), (100.0, 400.0), (80, 60), 10);
+        assert!(l > 100 && r > 100);
+    }
+
+    #[test]
+    fn the_chart_keeps_the_computed_aspect() {
+        let (w, h) = (1000u32, 700u32);
+        let mut buf = vec![0u8; (w * h * 3) as usize];
+        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+        let (dx, dy) = (1045.0, 879.0);
+        let [ml, mr, mt, mb] = equal_aspect_margins((w, h), (dx, dy), (80, 60), 10);
+        let chart = ChartBuilder::on(&root)
+            .margin_left(ml)
+            .margin_right(mr)
+            .margin_top(mt)
+            .margin_bottom(mb)
+            .y_label_area_size(80)
+            .x_label_area_size(60)
+            .build_cartesian_2d(Axis::linear(0.0, dx), Axis::linear(0.0, dy))
+            .unwrap();
+        // One metre is the same number of pixels along both axes.
+        let (a, b) = (chart.backend_coord(&(0.0, 0.0)), chart.backend_coord(&(dx, dy)));
+        let sx = f64::from(b.0 - a.0) / dx;
+        let sy = f64::from(a.1 - b.1) / dy;
+        assert!((sx / sy - 1.0).abs() < 0.005, "sx {sx} sy {sy}");
+    }
+}

@@ -1,0 +1,202 @@
+//! Every figure on the `tiny` scenario: each PNG decodes at the requested size, is not
+//! blank and has text in its title band; each SVG is a complete SVG document of that size
+//! with text in it. Failures name the file.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use swarmplan_core::encoding::{build, EncodingKind};
+use swarmplan_core::optim::{Algorithm, AlgorithmParams};
+use swarmplan_core::plan::Plan;
+use swarmplan_core::world::World;
+use swarmplan_experiment::record::RunRecord;
+use swarmplan_io::scenario::{build_world, load_spec};
+use swarmplan_plot::{
+    bench_boxplots, comm_timeline, convergence_bench, convergence_run, top_view, view_3d,
+    PlotError, Target, Written,
+};
+
+fn tiny() -> World {
+    let loaded = load_spec("tiny").expect("tiny is built in");
+    build_world(&loaded, None).expect("tiny builds")
+}
+
+/// A decoded spherical vector spread over the bounds by the golden ratio (deterministic,
+/// no RNG needed).
+fn plan(world: &World) -> Plan {
+    let enc = build(EncodingKind::Spherical, world);
+    let x: Vec<f64> = enc
+        .bounds()
+        .iter()
+        .enumerate()
+        .map(|(k, b)| {
+            let f = ((k as f64 + 1.0) * 0.618_033_988_75).fract();
+            b.lo + (b.hi - b.lo) * f
+        })
+        .collect();
+    enc.decode(&x)
+}
+
+fn record(alg: Algorithm, run: usize, cost: f64, feasible: bool) -> RunRecord {
+    let convergence: Vec<f64> = (0..31)
+        .map(|k| cost * (1.0 + 4.0 * (-(k as f64) / 6.0).exp()) + run as f64)
+        .collect();
+    RunRecord {
+        scenario: "tiny".into(),
+        param_set: "default".into(),
+        algorithm: alg,
+        encoding: EncodingKind::Spherical,
+        run,
+        master_seed: 1,
+        seed: 100 + run as u64,
+        params: AlgorithmParams::default(),
+        cost_total: cost * 2.0,
+        cost_per_uav: cost,
+        uav_costs: vec![cost, cost],
+        terms: BTreeMap::new(),
+        feasible,
+        violations: BTreeMap::new(),
+        evaluations: 1000,
+        iterations: 30,
+        seconds: 0.1,
+        convergence,
+    }
+}
+
+fn records() -> Vec<RunRecord> {
+    let mut out = Vec::new();
+    for (a, alg) in [Algorithm::DlsSmpso, Algorithm::Spso, Algorithm::Pso]
+        .into_iter()
+        .enumerate()
+    {
+        for run in 0..8 {
+            let base = 1500.0 + 200.0 * a as f64 + 37.0 * ((run * 7) % 5) as f64;
+            // One penalised run per algorithm, one infinite for PSO.
+            let cost = match (a, run) {
+                (2, 7) => f64::INFINITY,
+                (_, 3) => base + 20_000.0,
+                _ => base,
+            };
+            out.push(record(alg, run, cost, run % 3 != 0));
+        }
+    }
+    out
+}
+
+fn check_png(path: &Path, size: (u32, u32)) {
+    let img = image::open(path)
+        .unwrap_or_else(|e| panic!("{}: does not decode: {e}", path.display()))
+        .to_rgb8();
+    assert_eq!(img.dimensions(), size, "{}", path.display());
+    let luma: Vec<f64> = img
+        .pixels()
+        .map(|p| 0.299 * f64::from(p[0]) + 0.587 * f64::from(p[1]) + 0.114 * f64::from(p[2]))
+        .collect();
+    let mean = luma.iter().sum::<f64>() / luma.len() as f64;
+    let var = luma.iter().map(|l| (l - mean).powi(2)).sum::<f64>() / luma.len() as f64;
+    assert!(var > 200.0, "{}: nearly blank (variance {var:.1})", path.display());
+    // The title is drawn: dark pixels in the top band.
+    let band = (size.1 / 18) as usize;
+    let dark = img
+        .rows()
+        .take(band)
+        .flatten()
+        .filter(|p| u32::from(p[0]) + u32::from(p[1]) + u32::from(p[2]) < 300)
+        .count();
+    assert!(dark > 100, "{}: no title text ({dark} dark pixels)", path.display());
+}
+
+fn check_svg(path: &Path, size: (u32, u32)) {
+    let text = std::fs::read_to_string(path)
+        .unwrap_or_else(|e| panic!("{}: cannot read: {e}", path.display()));
+    let head = text.trim_start();
+    assert!(
+        head.starts_with("<svg") || head.starts_with("<?xml"),
+        "{}: not an SVG document",
+        path.display()
+    );
+    assert!(text.trim_end().ends_with("</svg>"), "{}: unterminated", path.display());
+    assert!(
+        text.contains(&format!("width=\"{}\"", size.0))
+            && text.contains(&format!("height=\"{}\"", size.1)),
+        "{}: wrong size",
+        path.display()
+    );
+    assert!(text.contains("<text"), "{}: no text", path.display());
+}
+
+fn check(w: &Written, size: (u32, u32)) {
+    check_png(&w.png, size);
+    check_svg(&w.svg, size);
+}
+
+#[test]
+fn every_figure_renders_on_the_tiny_scenario() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = tiny();
+    let plan = plan(&world);
+    let title = "tiny: dls-smpso, seed 7";
+    let size = Target::DEFAULT_SIZE;
+
+    check(&top_view(&world, &plan, title, dir.path().join("top")).unwrap(), size);
+    check(&view_3d(&world, &plan, title, dir.path().join("3d")).unwrap(), size);
+    check(&comm_timeline(&world, &plan, title, dir.path().join("comm")).unwrap(), size);
+
+    let trace: Vec<f64> = (0..41)
+        .map(|k| 4000.0 * (-(k as f64) / 8.0).exp() + 900.0)
+        .collect();
+    let per_uav: Vec<Vec<f64>> = vec![
+        trace.iter().map(|v| v * 0.45).collect(),
+        trace.iter().map(|v| v * 0.55).collect(),
+    ];
+    check(
+        &convergence_run(&trace, Some(&per_uav), title, dir.path().join("conv")).unwrap(),
+        size,
+    );
+    // A trace that starts infeasible (infinite) and a smaller figure.
+    let mut penalised = trace.clone();
+    penalised[0] = f64::INFINITY;
+    penalised[1] = f64::MAX;
+    let small = Target::new(dir.path().join("conv_small")).with_size(800, 600);
+    check(&convergence_run(&penalised, None, title, small).unwrap(), (800, 600));
+
+    let recs = records();
+    check(&convergence_bench(&recs, "tiny", dir.path().join("bench_conv")).unwrap(), size);
+    check(&bench_boxplots(&recs, "tiny", dir.path().join("bench_box")).unwrap(), size);
+}
+
+#[test]
+fn a_straight_plan_and_nested_folders_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = tiny();
+    let starts: Vec<_> = (0..world.uav_count()).map(|i| world.start(i)).collect();
+    let plan = Plan::straight(&starts, world.goal, 4);
+    let w = top_view(&world, &plan, "straight", dir.path().join("a/b/top.v1")).unwrap();
+    assert!(w.png.ends_with("top.v1.png") && w.svg.ends_with("top.v1.svg"));
+    check(&w, Target::DEFAULT_SIZE);
+}
+
+#[test]
+fn failures_name_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let recs = records();
+    let e = bench_boxplots(&recs, "no-such-scenario", dir.path().join("x")).unwrap_err();
+    assert!(matches!(e, PlotError::NoData { .. }));
+    assert!(e.to_string().contains("x.png"), "{e}");
+
+    let e = convergence_run(&[f64::INFINITY], None, "t", dir.path().join("inf")).unwrap_err();
+    assert!(e.to_string().contains("inf.png"), "{e}");
+
+    // A file where the folder should be.
+    let blocker = dir.path().join("file");
+    std::fs::write(&blocker, b"not a folder").unwrap();
+    let world = tiny();
+    let plan = plan(&world);
+    let e = top_view(&world, &plan, "t", blocker.join("top")).unwrap_err();
+    assert!(matches!(e, PlotError::Folder { .. }), "{e}");
+    assert!(e.to_string().contains("top.png"), "{e}");
+
+    let e = view_3d(&world, &plan, "t", Target::new(dir.path().join("s")).with_size(50, 50))
+        .unwrap_err();
+    assert!(matches!(e, PlotError::TooSmall { .. }), "{e}");
+}
