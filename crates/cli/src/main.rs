@@ -36,6 +36,10 @@ enum Command {
     Aggregate(commands::bench::AggregateArgs),
     /// Write a self-contained HTML report of a plan or bench folder.
     Report(commands::report::ReportArgs),
+    /// Draw the figures of a plan or bench folder (PNG and SVG).
+    Plot(commands::plot::PlotArgs),
+    /// Write a planned mission for autopilots and GIS (QGroundControl .plan, WPL, GeoJSON, KML, CSV).
+    Export(commands::export::ExportArgs),
 }
 
 #[derive(Debug, Subcommand)]
@@ -47,6 +51,8 @@ enum ScenarioCommand {
         /// Built-in name (see `scenario list`) or path to a TOML file.
         scenario: String,
     },
+    /// Write an editable scenario on a georeferenced DEM from start/goal latitude and longitude.
+    New(commands::scenario_new::ScenarioNewArgs),
 }
 
 /// A scenario and an optional terrain file that replaces its terrain source.
@@ -72,6 +78,9 @@ fn main() -> ExitCode {
         Command::Bench(args) => commands::bench::run_bench(&args),
         Command::Aggregate(args) => commands::bench::run_aggregate(&args),
         Command::Report(args) => commands::report::run(&args),
+        Command::Plot(args) => commands::plot::run(&args),
+        Command::Export(args) => commands::export::run(&args),
+        Command::Scenario(ScenarioCommand::New(args)) => commands::scenario_new::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

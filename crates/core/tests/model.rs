@@ -18,6 +18,7 @@ fn spec(starts: &[[f64; 3]]) -> ScenarioSpec {
         name: "test".into(),
         description: String::new(),
         terrain: TerrainSpec::default(),
+        geo: None,
         map: MapSpec {
             x: [0.0, 1000.0],
             y: [0.0, 1000.0],

@@ -130,7 +130,9 @@ pub fn resample(t: &Terrain, cell: f64, mode: Resample) -> Result<Terrain, DemOp
         Resample::Max => {
             let lo = |v: f64, o: f64, d: f64| ((v - 0.5 * cell - o) / d - 1e-9).ceil().max(0.0);
             let hi = |v: f64, o: f64, d: f64, n: usize| {
-                ((v + 0.5 * cell - o) / d + 1e-9).floor().min((n - 1) as f64)
+                ((v + 0.5 * cell - o) / d + 1e-9)
+                    .floor()
+                    .min((n - 1) as f64)
             };
             let (i0, i1) = (lo(x, x0, dx), hi(x, x0, dx, onx));
             let (j0, j1) = (lo(y, y0, dy), hi(y, y0, dy, ony));
@@ -211,7 +213,10 @@ mod tests {
             assert!(x1 <= 200.0 + 1e-9 && x1 > 200.0 - cell);
             assert!(y1 <= 300.0 + 1e-9 && y1 > 300.0 - cell);
             for (x, y) in [(100.0, 200.0), (133.0, 277.0), (x1, y1)] {
-                assert!((r.height(x, y) - t.height(x, y)).abs() < 1e-9, "{cell} {x} {y}");
+                assert!(
+                    (r.height(x, y) - t.height(x, y)).abs() < 1e-9,
+                    "{cell} {x} {y}"
+                );
             }
         }
     }

@@ -128,13 +128,21 @@ pub fn parse_csv(
             f[c].parse::<f64>()
                 .ok()
                 .filter(|v| v.is_finite())
-                .ok_or_else(|| line_err(line, format!("{}: expected a number, got `{}`", cols[c], f[c])))
+                .ok_or_else(|| {
+                    line_err(
+                        line,
+                        format!("{}: expected a number, got `{}`", cols[c], f[c]),
+                    )
+                })
         };
         let index = |c: usize| {
             f[c].parse::<usize>().map_err(|_| {
                 line_err(
                     line,
-                    format!("{}: expected a non-negative integer, got `{}`", cols[c], f[c]),
+                    format!(
+                        "{}: expected a non-negative integer, got `{}`",
+                        cols[c], f[c]
+                    ),
                 )
             })
         };
@@ -184,8 +192,7 @@ pub fn parse_geojson(
         path: name.to_string(),
         message,
     };
-    let doc: Value =
-        serde_json::from_str(text).map_err(|e| invalid(format!("not JSON: {e}")))?;
+    let doc: Value = serde_json::from_str(text).map_err(|e| invalid(format!("not JSON: {e}")))?;
     if doc["type"] != "FeatureCollection" {
         return Err(invalid(format!(
             "expected a GeoJSON FeatureCollection, got type {}",
@@ -234,7 +241,9 @@ pub fn parse_geojson(
             };
             let a = match agl {
                 Some(a) => Some(a[j].as_f64().ok_or_else(|| {
-                    invalid(format!("{here}.properties.alt_agl_m[{j}]: expected a number"))
+                    invalid(format!(
+                        "{here}.properties.alt_agl_m[{j}]: expected a number"
+                    ))
                 })?),
                 None => None,
             };

@@ -85,10 +85,17 @@ fn check_qgc_plan_format(doc: &Value, what: &str) {
         has(m, key, is_num, "a number");
     }
     let home = m["plannedHomePosition"].as_array().unwrap();
-    assert_eq!(home.len(), 3, "{what}: plannedHomePosition is [lat, lon, alt]");
+    assert_eq!(
+        home.len(),
+        3,
+        "{what}: plannedHomePosition is [lat, lon, alt]"
+    );
     assert!(home.iter().all(is_num));
     let items = m["items"].as_array().unwrap();
-    assert!(!items.is_empty(), "{what}: a mission needs at least one item");
+    assert!(
+        !items.is_empty(),
+        "{what}: a mission needs at least one item"
+    );
     for (k, it) in items.iter().enumerate() {
         let w = format!("{what}: items[{k}]");
         assert_eq!(it["type"], "SimpleItem", "{w}");
@@ -109,8 +116,14 @@ fn check_qgc_plan_format(doc: &Value, what: &str) {
     assert!(fence["polygons"].is_array());
     for c in fence["circles"].as_array().unwrap() {
         let center = c["circle"]["center"].as_array().unwrap();
-        assert!(center.len() == 2 && center.iter().all(is_num), "{what}: {c}");
-        assert!(is_num(&c["circle"]["radius"]) && c["inclusion"].is_boolean(), "{c}");
+        assert!(
+            center.len() == 2 && center.iter().all(is_num),
+            "{what}: {c}"
+        );
+        assert!(
+            is_num(&c["circle"]["radius"]) && c["inclusion"].is_boolean(),
+            "{c}"
+        );
         assert_eq!(c["version"], 1);
     }
     let rally = &doc["rallyPoints"];
@@ -149,12 +162,18 @@ fn qgc_plan_files_follow_the_documented_format_and_the_plan() {
         let items = doc["mission"]["items"].as_array().unwrap();
         let m = path.points.len();
         assert_eq!(items.len(), m + 3, "takeoff, speed, {m} waypoints, land");
-        let cmds: Vec<u64> = items.iter().map(|i| i["command"].as_u64().unwrap()).collect();
+        let cmds: Vec<u64> = items
+            .iter()
+            .map(|i| i["command"].as_u64().unwrap())
+            .collect();
         assert_eq!(cmds[0], 22);
         assert_eq!(cmds[1], 178);
         assert!(cmds[2..m + 2].iter().all(|&c| c == 16));
         assert_eq!(cmds[m + 2], 21);
-        let jump: Vec<u64> = items.iter().map(|i| i["doJumpId"].as_u64().unwrap()).collect();
+        let jump: Vec<u64> = items
+            .iter()
+            .map(|i| i["doJumpId"].as_u64().unwrap())
+            .collect();
         assert_eq!(jump, (1..=items.len() as u64).collect::<Vec<_>>());
         assert_eq!(items[1]["params"][1], path.speed_mps);
         assert_eq!(doc["mission"]["cruiseSpeed"], path.speed_mps);
@@ -194,7 +213,11 @@ fn wpl_and_geojson_read_with_pymavlink_and_geojson() {
         let mut lines = text.lines();
         assert_eq!(lines.next(), Some("QGC WPL 110"));
         let rows: Vec<Vec<&str>> = lines.map(|l| l.split('\t').collect()).collect();
-        assert_eq!(rows.len(), p.points.len() + 4, "home, takeoff, speed, path, land");
+        assert_eq!(
+            rows.len(),
+            p.points.len() + 4,
+            "home, takeoff, speed, path, land"
+        );
         for (k, r) in rows.iter().enumerate() {
             assert_eq!(r.len(), 12, "{name} line {k}: {r:?}");
             assert_eq!(r[0], k.to_string());
@@ -202,14 +225,32 @@ fn wpl_and_geojson_read_with_pymavlink_and_geojson() {
         }
         let (first, last) = (&p.points[0], &p.points[p.points.len() - 1]);
         let mut items = vec![
-            serde_json::json!([16, 0, first.geo.lat_deg, first.geo.lon_deg, first.ground_amsl_m]),
+            serde_json::json!([
+                16,
+                0,
+                first.geo.lat_deg,
+                first.geo.lon_deg,
+                first.ground_amsl_m
+            ]),
             serde_json::json!([22, 0, first.geo.lat_deg, first.geo.lon_deg, first.geo.alt_m]),
             serde_json::json!([178, 2, 0.0, 0.0, 0.0]),
         ];
         for pt in &p.points {
-            items.push(serde_json::json!([16, 0, pt.geo.lat_deg, pt.geo.lon_deg, pt.geo.alt_m]));
+            items.push(serde_json::json!([
+                16,
+                0,
+                pt.geo.lat_deg,
+                pt.geo.lon_deg,
+                pt.geo.alt_m
+            ]));
         }
-        items.push(serde_json::json!([21, 0, last.geo.lat_deg, last.geo.lon_deg, last.ground_amsl_m]));
+        items.push(serde_json::json!([
+            21,
+            0,
+            last.geo.lat_deg,
+            last.geo.lon_deg,
+            last.ground_amsl_m
+        ]));
         wpl.push(serde_json::json!({"file": name, "items": items}));
     }
     let n_features = 2 * mission.paths.len() + 1 + mission.threats.len();
@@ -237,7 +278,10 @@ fn wpl_and_geojson_read_with_pymavlink_and_geojson() {
         .unwrap()
         .contains("above mean sea level"));
     let c0 = &path0["geometry"]["coordinates"][0];
-    assert_eq!(c0[0], mission.paths[0].points[0].geo.lon_deg, "[lon, lat, alt]");
+    assert_eq!(
+        c0[0], mission.paths[0].points[0].geo.lon_deg,
+        "[lon, lat, alt]"
+    );
     let threat = feats.last().unwrap();
     assert_eq!(threat["geometry"]["type"], "Polygon");
     let ring = threat["geometry"]["coordinates"][0].as_array().unwrap();
@@ -255,10 +299,17 @@ fn wpl_and_geojson_read_with_pymavlink_and_geojson() {
 
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/export_check.py");
     let required = std::env::var("SWARMPLAN_REQUIRE_PYMAVLINK").is_ok_and(|v| v == "1");
-    let out = match Command::new("python3").arg(&script).arg(dir.path()).output() {
+    let out = match Command::new("python3")
+        .arg(&script)
+        .arg(dir.path())
+        .output()
+    {
         Ok(out) => out,
         Err(e) => {
-            assert!(!required, "SWARMPLAN_REQUIRE_PYMAVLINK=1 but python3 cannot run: {e}");
+            assert!(
+                !required,
+                "SWARMPLAN_REQUIRE_PYMAVLINK=1 but python3 cannot run: {e}"
+            );
             println!("skipped: python3 cannot run ({e}); the pymavlink / geojson check needs it");
             return;
         }
@@ -284,10 +335,17 @@ fn kml_and_csv_state_their_altitude_reference() {
     export_all(&world, &plan, dir.path());
     let kml = std::fs::read_to_string(dir.path().join("mission.kml")).unwrap();
     assert!(kml.starts_with("<?xml"));
-    assert_eq!(kml.matches("<LineString><altitudeMode>absolute</altitudeMode>").count(), 2);
+    assert_eq!(
+        kml.matches("<LineString><altitudeMode>absolute</altitudeMode>")
+            .count(),
+        2
+    );
     assert_eq!(kml.matches("<Polygon>").count(), world.spec.threats.len());
     assert!(kml.contains("above mean sea level"));
-    assert_eq!(kml.matches("<Placemark>").count(), kml.matches("</Placemark>").count());
+    assert_eq!(
+        kml.matches("<Placemark>").count(),
+        kml.matches("</Placemark>").count()
+    );
     let csv = std::fs::read_to_string(dir.path().join("mission.csv")).unwrap();
     let mut lines = csv.lines();
     let comment = lines.next().unwrap();
@@ -297,7 +355,10 @@ fn kml_and_csv_state_their_altitude_reference() {
         Some("uav,waypoint,time_s,lat_deg,lon_deg,alt_amsl_m,alt_agl_m,speed_mps")
     );
     let rows = lines.count();
-    assert_eq!(rows, plan.uavs.iter().map(|p| p.waypoints.len()).sum::<usize>());
+    assert_eq!(
+        rows,
+        plan.uavs.iter().map(|p| p.waypoints.len()).sum::<usize>()
+    );
 }
 
 #[test]
@@ -325,7 +386,10 @@ fn export_then_reimport_gives_the_same_cost() {
         );
         assert!(worst < 1e-6, "{format}: {worst}");
         assert!((after.total - before.total).abs() < 1e-6, "{format}");
-        assert!((after.violation - before.violation).abs() < 1e-6, "{format}");
+        assert!(
+            (after.violation - before.violation).abs() < 1e-6,
+            "{format}"
+        );
         // Ends are snapped exactly onto the scenario's start and goal.
         for (i, p) in again.uavs.iter().enumerate() {
             assert_eq!(p.waypoints[0], world.start(i));
@@ -341,7 +405,10 @@ fn reimport_errors_name_the_file_and_the_problem() {
     let e = parse_csv("uav,lat_deg\n0,1\n", "m.csv", &world, &f)
         .unwrap_err()
         .to_string();
-    assert!(e.starts_with("m.csv: line 1") && e.contains("lon_deg"), "{e}");
+    assert!(
+        e.starts_with("m.csv: line 1") && e.contains("lon_deg"),
+        "{e}"
+    );
     let e = parse_csv(
         "uav,lat_deg,lon_deg,alt_amsl_m\n0,x,1,2\n",
         "m.csv",
@@ -350,7 +417,10 @@ fn reimport_errors_name_the_file_and_the_problem() {
     )
     .unwrap_err()
     .to_string();
-    assert!(e.contains("line 2") && e.contains("lat_deg") && e.contains("`x`"), "{e}");
+    assert!(
+        e.contains("line 2") && e.contains("lat_deg") && e.contains("`x`"),
+        "{e}"
+    );
     let e = parse_csv(
         "uav,lat_deg,lon_deg,alt_amsl_m\n0,-10.45,105.62,100\n0,-10.45,105.62,100\n",
         "m.csv",

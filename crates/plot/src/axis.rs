@@ -24,14 +24,20 @@ pub(crate) fn draw_mesh<DB: DrawingBackend>(
     x_desc: &str,
     y_desc: &str,
 ) -> DrawResult<(), DB> {
+    let x = chart.as_coord_spec().x_spec().clone();
+    let y = chart.as_coord_spec().y_spec().clone();
+    let fx = |v: &f64| x.label(*v);
+    let fy = |v: &f64| y.label(*v);
     chart
         .configure_mesh()
-        .light_line_style(GRID.mix(0.35))
+        .light_line_style(GRID.mix(0.3))
         .bold_line_style(GRID.mix(0.9))
         .label_style(s.tick())
         .axis_desc_style(s.axis_desc())
         .x_labels(10)
         .y_labels(10)
+        .x_label_formatter(&fx)
+        .y_label_formatter(&fy)
         .x_desc(x_desc)
         .y_desc(y_desc)
         .draw()
@@ -51,6 +57,9 @@ pub(crate) struct Axis {
     lo: f64,
     hi: f64,
     kind: Kind,
+    /// Drawn from `hi` to `lo` (the 3-D view needs a reversed north axis to stay
+    /// right-handed).
+    reversed: bool,
 }
 
 impl Axis {
@@ -61,6 +70,7 @@ impl Axis {
             lo,
             hi,
             kind: Kind::Linear,
+            reversed: false,
         }
     }
 
@@ -71,6 +81,7 @@ impl Axis {
             lo,
             hi,
             kind: Kind::Fixed(ticks),
+            reversed: false,
         }
     }
 
@@ -95,6 +106,7 @@ impl Axis {
                 lo: 10f64.powf(a - m),
                 hi: 10f64.powf(b + m),
                 kind: Kind::Log10,
+                reversed: false,
             };
         }
         if zero {
@@ -106,10 +118,27 @@ impl Axis {
         Self::linear(lo2, hi + m)
     }
 
+    /// The same axis drawn from high to low.
+    pub(crate) fn reversed(mut self) -> Self {
+        self.reversed = !self.reversed;
+        self
+    }
+
+    /// A tick label: scientific notation for every label of an axis reaching 1e5, so
+    /// that one axis never mixes `50000` and `1e5`.
+    pub(crate) fn label(&self, v: f64) -> String {
+        if self.lo.abs().max(self.hi.abs()) >= 1e5 && v != 0.0 && v.is_finite() {
+            scientific(v)
+        } else {
+            format_value(v)
+        }
+    }
+
     pub(crate) fn is_log(&self) -> bool {
         self.kind == Kind::Log10
     }
 
+    #[cfg(test)]
     pub(crate) fn lo(&self) -> f64 {
         self.lo
     }
@@ -129,6 +158,15 @@ impl Axis {
 
     /// Position of `v` in [0, 1] along the axis.
     fn fraction(&self, v: f64) -> f64 {
+        let f = self.fraction_up(v);
+        if self.reversed {
+            1.0 - f
+        } else {
+            f
+        }
+    }
+
+    fn fraction_up(&self, v: f64) -> f64 {
         match self.kind {
             Kind::Log10 => {
                 let v = if v > 0.0 { v } else { self.lo };
@@ -138,7 +176,8 @@ impl Axis {
         }
     }
 
-    fn ticks(&self, max: usize, light: bool) -> Vec<f64> {
+    /// Ticks: at most `max`; `light` ones subdivide the step of at most `bold` bold ones.
+    fn ticks(&self, max: usize, bold: usize, light: bool) -> Vec<f64> {
         if max == 0 {
             return Vec::new();
         }
@@ -150,6 +189,19 @@ impl Axis {
                     t.clone()
                 }
             }
+            Kind::Linear if light => match nice_step(self.lo, self.hi, bold) {
+                Some(step) => {
+                    let digit = (step / 10f64.powf(step.log10().floor())).round();
+                    let sub = step / if digit == 2.0 { 4.0 } else { 5.0 };
+                    let t = multiples(self.lo, self.hi, sub, max);
+                    if t.len() <= max {
+                        t
+                    } else {
+                        Vec::new()
+                    }
+                }
+                None => Vec::new(),
+            },
             Kind::Linear => linear_ticks(self.lo, self.hi, max),
             Kind::Log10 => log_ticks(self.lo, self.hi, max, light),
         }
@@ -168,20 +220,26 @@ fn widen(lo: f64, hi: f64) -> (f64, f64) {
     }
 }
 
-/// At most `max` ticks at multiples of a 1-2-5 step within [lo, hi].
-pub(crate) fn linear_ticks(lo: f64, hi: f64, max: usize) -> Vec<f64> {
-    if max == 0 || !(hi > lo) {
-        return Vec::new();
+/// The 1-2-5 step that puts at most `max` ticks in [lo, hi].
+fn nice_step(lo: f64, hi: f64, max: usize) -> Option<f64> {
+    if max == 0 || hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
+        return None;
     }
     let raw = (hi - lo) / max as f64;
     let mag = 10f64.powf(raw.log10().floor());
-    let step = [1.0, 2.0, 5.0, 10.0]
-        .iter()
-        .map(|m| m * mag)
-        .find(|s| *s >= raw)
-        .unwrap_or(10.0 * mag);
-    let first = (lo / step).ceil();
-    let last = (hi / step).floor();
+    Some(
+        [1.0, 2.0, 5.0, 10.0]
+            .iter()
+            .map(|m| m * mag)
+            .find(|s| *s >= raw)
+            .unwrap_or(10.0 * mag),
+    )
+}
+
+/// Multiples of `step` within [lo, hi] (at most `max` + 1, to tell "too many").
+fn multiples(lo: f64, hi: f64, step: f64, max: usize) -> Vec<f64> {
+    let first = (lo / step - 1e-9).ceil();
+    let last = (hi / step + 1e-9).floor();
     let mut out = Vec::new();
     let mut k = first;
     while k <= last && out.len() <= max {
@@ -191,6 +249,12 @@ pub(crate) fn linear_ticks(lo: f64, hi: f64, max: usize) -> Vec<f64> {
         k += 1.0;
     }
     out
+}
+
+/// Ticks at multiples of the 1-2-5 step of at most `max` intervals within [lo, hi] (so
+/// up to `max` + 1 ticks when both ends fall on the step).
+pub(crate) fn linear_ticks(lo: f64, hi: f64, max: usize) -> Vec<f64> {
+    nice_step(lo, hi, max).map_or_else(Vec::new, |step| multiples(lo, hi, step, max))
 }
 
 fn log_ticks(lo: f64, hi: f64, max: usize, light: bool) -> Vec<f64> {
@@ -232,16 +296,24 @@ pub(crate) fn format_value(v: f64) -> String {
         return "0".into();
     }
     if !(1e-2..1e5).contains(&a) {
-        let e = a.log10().floor() as i32;
-        let m = v / 10f64.powi(e);
-        let m = (m * 100.0).round() / 100.0;
-        return format!("{}e{e}", trim(format!("{m:.2}")));
+        return scientific(v);
     }
     if (v - v.round()).abs() < 1e-9 * a.max(1.0) {
         return format!("{}", v.round() as i64);
     }
     let decimals = (2 - a.log10().floor() as i32).clamp(0, 4) as usize;
     trim(format!("{v:.decimals$}"))
+}
+
+/// `v` as `2.5e6`.
+fn scientific(v: f64) -> String {
+    let mut e = v.abs().log10().floor() as i32;
+    let mut m = ((v / 10f64.powi(e)) * 100.0).round() / 100.0;
+    if m.abs() >= 10.0 {
+        m /= 10.0;
+        e += 1;
+    }
+    format!("{}e{e}", trim(format!("{m:.2}")))
 }
 
 fn trim(s: String) -> String {
@@ -258,13 +330,17 @@ impl Ranged for Axis {
 
     fn map(&self, value: &f64, limit: (i32, i32)) -> i32 {
         let f = self.fraction(*value);
-        let f = if f.is_finite() { f.clamp(-1.0, 2.0) } else { 0.0 };
+        let f = if f.is_finite() {
+            f.clamp(-1.0, 2.0)
+        } else {
+            0.0
+        };
         (f64::from(limit.0) + f * f64::from(limit.1 - limit.0)).round() as i32
     }
 
     fn key_points<Hint: KeyPointHint>(&self, hint: Hint) -> Vec<f64> {
         let light = matches!(hint.weight(), KeyPointWeight::Any);
-        self.ticks(hint.max_num_points(), light)
+        self.ticks(hint.max_num_points(), hint.bold_points(), light)
     }
 
     fn range(&self) -> Range<f64> {
@@ -284,7 +360,10 @@ mod tests {
 
     #[test]
     fn linear_ticks_are_round() {
-        assert_eq!(linear_ticks(0.0, 10.0, 5), vec![0.0, 2.0, 4.0, 6.0, 8.0, 10.0]);
+        assert_eq!(
+            linear_ticks(0.0, 10.0, 5),
+            vec![0.0, 2.0, 4.0, 6.0, 8.0, 10.0]
+        );
         assert_eq!(linear_ticks(0.0, 1000.0, 10)[1], 100.0);
         assert!(linear_ticks(1.0, 1.0, 5).is_empty());
     }
@@ -306,15 +385,41 @@ mod tests {
         assert_eq!(a.map(&10.0, (0, 300)), 0);
         assert_eq!(a.map(&100.0, (0, 300)), 100);
         assert_eq!(a.map(&1.0e4, (0, 300)), 300);
-        let t = a.ticks(10, false);
+        let t = a.ticks(10, 10, false);
         assert!(t.contains(&100.0) && t.contains(&1000.0), "{t:?}");
         // Narrow log axis: linear steps, not nothing.
         let n = Axis {
             lo: 4000.0,
             hi: 9000.0,
             kind: Kind::Log10,
+            reversed: false,
         };
-        assert!(n.ticks(10, false).len() >= 3);
+        assert!(n.ticks(10, 10, false).len() >= 3);
+    }
+
+    #[test]
+    fn light_ticks_subdivide_bold_ones() {
+        let a = Axis::linear(0.0, 100.0);
+        assert_eq!(a.ticks(10, 10, false).len(), 11);
+        let light = a.ticks(100, 10, true);
+        assert_eq!(light.len(), 51, "{light:?}");
+        assert!(light.contains(&2.0) && light.contains(&98.0));
+    }
+
+    #[test]
+    fn reversed_axes_map_high_to_the_start() {
+        let a = Axis::linear(0.0, 10.0).reversed();
+        assert_eq!(a.map(&10.0, (0, 100)), 0);
+        assert_eq!(a.map(&0.0, (0, 100)), 100);
+    }
+
+    #[test]
+    fn one_axis_one_notation() {
+        let a = Axis::linear(0.0, 2.0e5);
+        assert_eq!(a.label(50_000.0), "5e4");
+        assert_eq!(a.label(0.0), "0");
+        assert_eq!(Axis::linear(0.0, 900.0).label(500.0), "500");
+        assert_eq!(format_value(9.999e6), "1e7");
     }
 
     #[test]

@@ -45,11 +45,14 @@ pub fn bench_boxplots(
             format!("no run of scenario `{scenario}` in the records"),
         ));
     }
-    let values = columns.iter().filter_map(|c| c.boxes.as_ref()).flat_map(|b| {
-        [b.whisker_lo, b.whisker_hi]
-            .into_iter()
-            .chain(b.outliers.iter().copied())
-    });
+    let values = columns
+        .iter()
+        .filter_map(|c| c.boxes.as_ref())
+        .flat_map(|b| {
+            [b.whisker_lo, b.whisker_hi]
+                .into_iter()
+                .chain(b.outliers.iter().copied())
+        });
     let y = Axis::auto(values, 0.08, false);
     render(
         &BenchBoxplots {
@@ -105,14 +108,16 @@ impl BenchBoxplots<'_> {
             .y_label_area_size(s.px(100.0))
             .build_cartesian_2d(self.categories(), self.y.clone())?;
         let fmt = |v: &f64| self.label_of(*v);
+        let fy = |v: &f64| self.y.label(*v);
         chart
             .configure_mesh()
             .disable_x_mesh()
-            .light_line_style(GRID.mix(0.35))
+            .light_line_style(GRID.mix(0.3))
             .bold_line_style(GRID.mix(0.9))
             .label_style(s.tick())
             .axis_desc_style(s.axis_desc())
             .x_label_formatter(&fmt)
+            .y_label_formatter(&fy)
             .y_labels(10)
             .x_desc("algorithm")
             .y_desc(cost_desc("cost per UAV", &self.y))
@@ -131,11 +136,17 @@ impl BenchBoxplots<'_> {
                     PathElement::new(vec![(x, b.q3), (x, b.whisker_hi)], line),
                     PathElement::new(vec![(x, b.q1), (x, b.whisker_lo)], line),
                     PathElement::new(
-                        vec![(x - half / 2.0, b.whisker_hi), (x + half / 2.0, b.whisker_hi)],
+                        vec![
+                            (x - half / 2.0, b.whisker_hi),
+                            (x + half / 2.0, b.whisker_hi),
+                        ],
                         line,
                     ),
                     PathElement::new(
-                        vec![(x - half / 2.0, b.whisker_lo), (x + half / 2.0, b.whisker_lo)],
+                        vec![
+                            (x - half / 2.0, b.whisker_lo),
+                            (x + half / 2.0, b.whisker_lo),
+                        ],
                         line,
                     ),
                     PathElement::new(
@@ -164,6 +175,7 @@ impl BenchBoxplots<'_> {
         Ok(())
     }
 
+    /// Feasible rate as horizontal bars, so that algorithm names have room.
     fn draw_rates<DB: DrawingBackend>(
         &self,
         area: &DrawingArea<DB, Shift>,
@@ -172,44 +184,47 @@ impl BenchBoxplots<'_> {
         let mut chart = ChartBuilder::on(area)
             .caption("feasible rate (FR)", s.subtitle())
             .margin(s.px(15.0))
-            .x_label_area_size(s.px(55.0))
-            .y_label_area_size(s.px(80.0))
-            .build_cartesian_2d(self.categories(), Axis::linear(0.0, 110.0))?;
+            .margin_right(s.px(25.0))
+            .x_label_area_size(s.px(65.0))
+            .y_label_area_size(s.px(105.0))
+            .build_cartesian_2d(
+                // Room right of a full bar for its label; grid and ticks stop at 100 %.
+                Axis::fixed(0.0, 125.0, (0..=5).map(|k| 20.0 * f64::from(k)).collect()),
+                self.categories().reversed(),
+            )?;
         let fmt = |v: &f64| self.label_of(*v);
-        let pct = |v: &f64| if *v <= 100.0 { format_value(*v) } else { String::new() };
+        let pct = |v: &f64| format_value(*v);
         chart
             .configure_mesh()
-            .disable_x_mesh()
-            .light_line_style(GRID.mix(0.35))
+            .disable_y_mesh()
+            .light_line_style(GRID.mix(0.3))
             .bold_line_style(GRID.mix(0.9))
             .label_style(s.tick())
             .axis_desc_style(s.axis_desc())
-            .x_label_formatter(&fmt)
-            .y_label_formatter(&pct)
-            .y_labels(12)
-            .x_desc("algorithm")
-            .y_desc("feasible runs, %")
+            .y_label_formatter(&fmt)
+            .x_label_formatter(&pct)
+            .x_desc("feasible runs, %")
             .draw()?;
-        let top = s.note().pos(Pos::new(HPos::Center, VPos::Bottom));
+        let text = s.note().pos(Pos::new(HPos::Left, VPos::Center));
         for (i, col) in self.columns.iter().enumerate() {
             let c = style::series_colour(i);
-            let x = i as f64;
+            let y = i as f64;
             let fr = 100.0 * col.feasible as f64 / col.runs.max(1) as f64;
             chart.draw_series([
-                Rectangle::new([(x - 0.35, 0.0), (x + 0.35, fr)], c.mix(0.75).filled()),
-                Rectangle::new([(x - 0.35, 0.0), (x + 0.35, fr)], c.stroke_width(s.px(1.5))),
+                Rectangle::new([(0.0, y - 0.32), (fr, y + 0.32)], c.mix(0.75).filled()),
+                Rectangle::new([(0.0, y - 0.32), (fr, y + 0.32)], c.stroke_width(s.px(1.5))),
             ])?;
             chart.draw_series(std::iter::once(
-                EmptyElement::at((x, fr))
+                EmptyElement::at((fr, y))
                     + Text::new(
-                        format!("{}/{}", col.feasible, col.runs),
-                        (0, -s.off(4.0)),
-                        top.clone(),
-                    )
-                    + Text::new(
-                        format!("{} %", format_value((fr * 10.0).round() / 10.0)),
-                        (0, -s.off(22.0)),
-                        top.clone(),
+                        format!(
+                            "{} % ({}/{})",
+                            format_value((fr * 10.0).round() / 10.0),
+                            col.feasible,
+                            col.runs
+                        ),
+                        (s.off(6.0), 0),
+                        text.clone(),
                     ),
             ))?;
         }

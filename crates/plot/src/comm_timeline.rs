@@ -83,11 +83,18 @@ impl CommTimeline<'_> {
                     .note()
                     .color(&style::INTERFERENCE)
                     .pos(Pos::new(HPos::Left, VPos::Top));
+                // One line per window, so that overlapping windows keep readable labels.
                 chart.draw_series(std::iter::once(
                     EmptyElement::at((a, hi))
                         + Text::new(
-                            format!("W{} {} dB", k + 1, format_value(w.loss_db)),
-                            (s.off(4.0), s.off(4.0)),
+                            format!(
+                                "W{}: {}-{} s, {} dB",
+                                k + 1,
+                                format_value(w.time[0]),
+                                format_value(w.time[1]),
+                                format_value(w.loss_db)
+                            ),
+                            (s.off(4.0), s.off(3.0) + k as i32 * s.off(17.0)),
                             text,
                         ),
                 ))?;
@@ -127,9 +134,10 @@ impl CommTimeline<'_> {
             .axis_desc_style(s.axis_desc())
             .y_label_formatter(&name)
             .x_labels(12)
+            .max_light_lines(5)
             .x_desc("time, s")
             .draw()?;
-        self.draw_windows(&mut chart, -0.5, n as f64 - 0.5, true, s)?;
+        self.draw_windows(&mut chart, -0.5, n as f64 - 0.5, false, s)?;
         let dt = self.trace.dt;
         let t_end = self.t_end();
         for i in 0..n {
@@ -151,16 +159,22 @@ impl CommTimeline<'_> {
                 .zip(&self.trace.positions)
                 .map(|(t, p)| ch.interference_db(*t, p[i].x, p[i].y) > 0.0)
                 .collect();
-            chart.draw_series(inside.iter().enumerate().filter(|(_, b)| **b).map(|(k, _)| {
-                let t = self.trace.times[k];
-                Rectangle::new(
-                    [
-                        ((t - dt / 2.0).max(0.0), y - 0.42),
-                        ((t + dt / 2.0).min(t_end), y - 0.34),
-                    ],
-                    style::INTERFERENCE.filled(),
-                )
-            }))?;
+            chart.draw_series(
+                inside
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, b)| **b)
+                    .map(|(k, _)| {
+                        let t = self.trace.times[k];
+                        Rectangle::new(
+                            [
+                                ((t - dt / 2.0).max(0.0), y - 0.42),
+                                ((t + dt / 2.0).min(t_end), y - 0.34),
+                            ],
+                            style::INTERFERENCE.filled(),
+                        )
+                    }),
+            )?;
         }
         Ok(())
     }
@@ -179,7 +193,8 @@ impl CommTimeline<'_> {
             .map(|(k, t)| (*t, ch.base_range(k)))
             .collect();
         let r0 = ch.nominal_range();
-        let top = range.iter().map(|p| p.1).fold(r0, f64::max) * 1.12;
+        let windows = ch.interference().len() as f64;
+        let top = range.iter().map(|p| p.1).fold(r0, f64::max) * (1.1 + 0.07 * windows);
         let mut chart = ChartBuilder::on(area)
             .caption("radio range", s.subtitle())
             .margin(s.px(12.0))
@@ -188,7 +203,7 @@ impl CommTimeline<'_> {
             .y_label_area_size(s.px(100.0))
             .build_cartesian_2d(Axis::linear(0.0, self.t_end()), Axis::linear(0.0, top))?;
         draw_mesh(&mut chart, s, "time, s", "range, m")?;
-        self.draw_windows(&mut chart, 0.0, top, false, s)?;
+        self.draw_windows(&mut chart, 0.0, top, true, s)?;
         let dashed = |pts: Vec<(f64, f64)>, c: RGBColor, w: u32| {
             // Dashes in time units: about 1/100 of the axis.
             let d = self.t_end() / 100.0;
@@ -198,7 +213,9 @@ impl CommTimeline<'_> {
                 .into_iter()
                 .map(move |p| {
                     PathElement::new(
-                        p.into_iter().map(|(x, y)| (x, y / scale_y)).collect::<Vec<_>>(),
+                        p.into_iter()
+                            .map(|(x, y)| (x, y / scale_y))
+                            .collect::<Vec<_>>(),
                         c.stroke_width(w),
                     )
                 })
@@ -230,7 +247,11 @@ impl CommTimeline<'_> {
     fn legend_entries(&self, s: Scale) -> Vec<Entry> {
         let mut e = vec![
             Entry::Heading("contact".into()),
-            Entry::patch("direct to a ground node", style::DIRECT.mix(1.0), style::DIRECT),
+            Entry::patch(
+                "direct to a ground node",
+                style::DIRECT.mix(1.0),
+                style::DIRECT,
+            ),
             Entry::patch("relayed via UAVs", style::RELAYED.mix(1.0), style::RELAYED),
             Entry::patch("out of contact", style::OUT.mix(1.0), style::OUT),
             Entry::line("inside interference disk", style::INTERFERENCE, s.px(5.0)),

@@ -49,14 +49,7 @@ pub fn convergence_bench(
         .iter()
         .flat_map(|b| b.q25.iter().chain(&b.median).chain(&b.q75).copied());
     let y = Axis::auto(values, 0.05, false);
-    render(
-        &ConvergenceBench {
-            scenario,
-            bands,
-            y,
-        },
-        &target,
-    )
+    render(&ConvergenceBench { scenario, bands, y }, &target)
 }
 
 /// Quartiles per iteration of one algorithm's runs.
@@ -108,10 +101,7 @@ impl Figure for ConvergenceBench<'_> {
             .margin_right(s.px(40.0))
             .x_label_area_size(s.px(65.0))
             .y_label_area_size(s.px(100.0))
-            .build_cartesian_2d(
-                Axis::linear(0.0, (len.max(2) - 1) as f64),
-                self.y.clone(),
-            )?;
+            .build_cartesian_2d(Axis::linear(0.0, (len.max(2) - 1) as f64), self.y.clone())?;
         draw_mesh(
             &mut chart,
             s,
@@ -129,7 +119,11 @@ impl Figure for ConvergenceBench<'_> {
                 .iter()
                 .map(|k| (*k as f64, self.y.clamp(b.q75[*k])))
                 .collect();
-            poly.extend(ks.iter().rev().map(|k| (*k as f64, self.y.clamp(b.q25[*k]))));
+            poly.extend(
+                ks.iter()
+                    .rev()
+                    .map(|k| (*k as f64, self.y.clamp(b.q25[*k]))),
+            );
             chart.draw_series(std::iter::once(Polygon::new(poly, c.mix(0.18).filled())))?;
         }
         let w = s.px(3.0);

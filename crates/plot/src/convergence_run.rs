@@ -23,7 +23,12 @@ pub fn convergence_run(
 ) -> Result<Written, PlotError> {
     let target = out.into();
     let per_uav = per_uav.unwrap_or(&[]);
-    let all = || trace.iter().chain(per_uav.iter().flatten()).map(|v| cost(*v));
+    let all = || {
+        trace
+            .iter()
+            .chain(per_uav.iter().flatten())
+            .map(|v| cost(*v))
+    };
     if all().all(|v| !v.is_finite()) {
         return Err(no_data(&target, "the convergence trace has no finite cost"));
     }
@@ -86,10 +91,7 @@ impl Figure for ConvergenceRun<'_> {
             .margin_right(s.px(40.0))
             .x_label_area_size(s.px(65.0))
             .y_label_area_size(s.px(100.0))
-            .build_cartesian_2d(
-                Axis::linear(0.0, (len.max(2) - 1) as f64),
-                self.y.clone(),
-            )?;
+            .build_cartesian_2d(Axis::linear(0.0, (len.max(2) - 1) as f64), self.y.clone())?;
         draw_mesh(
             &mut chart,
             s,
@@ -101,7 +103,14 @@ impl Figure for ConvergenceRun<'_> {
             .per_uav
             .iter()
             .enumerate()
-            .map(|(i, v)| (format!("UAV {}", i + 1), style::uav_colour(i), s.px(2.0), &v[..]))
+            .map(|(i, v)| {
+                (
+                    format!("UAV {}", i + 1),
+                    style::uav_colour(i),
+                    s.px(2.0),
+                    &v[..],
+                )
+            })
             .collect();
         if !self.trace.is_empty() {
             series.push(("total".to_string(), BLACK, s.px(3.0), self.trace));

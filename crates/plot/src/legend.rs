@@ -13,7 +13,6 @@ use crate::style::Scale;
 #[derive(Debug, Clone, Copy)]
 pub(crate) enum Shape {
     Dot,
-    Cross,
     Triangle,
     Square,
     /// A circle outline with a cross inside (out-of-contact mark).
@@ -92,7 +91,6 @@ pub(crate) fn draw_shape<DB: DrawingBackend>(
     let w = s.px(2.5);
     match shape {
         Shape::Dot => area.draw(&Circle::new(c, r, colour.filled())),
-        Shape::Cross => area.draw(&Cross::new(c, r, colour.stroke_width(w))),
         Shape::Triangle => area.draw(&TriangleMarker::new(c, r + 2, colour.filled())),
         Shape::Square => area.draw(&Rectangle::new(
             [(c.0 - r, c.1 - r), (c.0 + r, c.1 + r)],

@@ -176,7 +176,19 @@ pub(crate) fn render(figure: &impl Figure, target: &Target) -> Result<Written, P
         let root = SVGBackend::new(&svg, size).into_drawing_area();
         draw_on(figure, &root).map_err(draw_err(&svg))?;
     }
+    fix_embedded_images(&svg).map_err(|e| draw_err(&svg)(e.to_string()))?;
     Ok(Written { png, svg })
+}
+
+/// plotters-svg 0.3.7 embeds bitmaps as `data:png;base64,...`, which is not a MIME type;
+/// strict viewers refuse it. Rewrites those to `data:image/png`.
+fn fix_embedded_images(svg: &Path) -> std::io::Result<()> {
+    const BAD: &str = "href=\"data:png;base64,";
+    let text = std::fs::read_to_string(svg)?;
+    if text.contains(BAD) {
+        std::fs::write(svg, text.replace(BAD, "href=\"data:image/png;base64,"))?;
+    }
+    Ok(())
 }
 
 fn draw_on<DB: DrawingBackend>(
@@ -220,6 +232,8 @@ mod tests {
             width: 10,
             height: 10,
         };
-        assert!(e.to_string().starts_with("x/top.png: 10 x 10 px is too small"));
+        assert!(e
+            .to_string()
+            .starts_with("x/top.png: 10 x 10 px is too small"));
     }
 }

@@ -60,7 +60,11 @@ impl BoxStats {
         let q3 = quantile_sorted(&v, 0.75);
         let iqr = q3 - q1;
         let (lo_fence, hi_fence) = (q1 - 1.5 * iqr, q3 + 1.5 * iqr);
-        let inside = || v.iter().copied().filter(|x| *x >= lo_fence && *x <= hi_fence);
+        let inside = || {
+            v.iter()
+                .copied()
+                .filter(|x| *x >= lo_fence && *x <= hi_fence)
+        };
         let whisker_lo = inside().fold(f64::INFINITY, f64::min).min(q1);
         let whisker_hi = inside().fold(f64::NEG_INFINITY, f64::max).max(q3);
         let outliers = v

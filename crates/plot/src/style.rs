@@ -24,7 +24,10 @@ pub(crate) fn register_font() -> Result<(), String> {
         ];
         for (style, bytes) in fonts {
             plotters::style::register_font(FONT, style, bytes).map_err(|_| {
-                format!("the embedded DejaVu Sans ({style:?}) is not a readable font")
+                format!(
+                    "the embedded DejaVu Sans ({}) is not a readable font",
+                    style.as_str()
+                )
             })?;
         }
         Ok(())
@@ -130,7 +133,11 @@ pub(crate) fn terrain_colour(t: f64) -> RGBColor {
         (0.75, [196.0, 164.0, 118.0]),
         (1.0, [246.0, 242.0, 236.0]),
     ];
-    let t = if t.is_finite() { t.clamp(0.0, 1.0) } else { 0.0 };
+    let t = if t.is_finite() {
+        t.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     let k = STOPS
         .windows(2)
         .position(|w| t <= w[1].0)
@@ -179,7 +186,11 @@ pub(crate) fn dashes(pts: &[(f64, f64)], dash: f64, gap: f64) -> Vec<Vec<(f64, f
         let mut s = 0.0;
         while s < len {
             let drawing = phase < dash;
-            let left = if drawing { dash - phase } else { period - phase };
+            let left = if drawing {
+                dash - phase
+            } else {
+                period - phase
+            };
             let step = left.min(len - s);
             s += step;
             phase += step;

@@ -10,7 +10,6 @@
 use plotters::coord::Shift;
 use plotters::element::BitMapElement;
 use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, Pos, VPos};
 use swarmplan_core::cost::comm::Contact;
 use swarmplan_core::plan::Plan;
 use swarmplan_core::world::World;
@@ -36,6 +35,9 @@ pub fn top_view(
 /// The danger band reaches this many drone sizes beyond the hard zone r + size (SPSO's J2).
 const DANGER_SIZES: f64 = 10.0;
 
+/// A contour segment, two points in metres.
+type Segment = [(f64, f64); 2];
+
 struct TopView<'a> {
     world: &'a World,
     plan: &'a Plan,
@@ -47,7 +49,7 @@ struct TopView<'a> {
     h: (f64, f64),
     step: f64,
     /// (level, segments).
-    contours: Vec<(f64, Vec<[(f64, f64); 2]>)>,
+    contours: Vec<(f64, Vec<Segment>)>,
 }
 
 impl<'a> TopView<'a> {
@@ -58,7 +60,12 @@ impl<'a> TopView<'a> {
             .uavs
             .iter()
             .flat_map(|p| p.waypoints.iter().map(|w| (w.x, w.y)))
-            .chain(world.ground_nodes.iter().map(|g| (g.position.x, g.position.y)));
+            .chain(
+                world
+                    .ground_nodes
+                    .iter()
+                    .map(|g| (g.position.x, g.position.y)),
+            );
         for (px, py) in points.filter(|(a, b)| a.is_finite() && b.is_finite()) {
             x = (x.0.min(px), x.1.max(px));
             y = (y.0.min(py), y.1.max(py));
@@ -190,7 +197,10 @@ impl<'a> TopView<'a> {
             Rectangle::new([(0.0, a), (1.0, b)], c.filled())
         }))?;
         bar.draw_series(self.contours.iter().map(|(l, _)| {
-            PathElement::new(vec![(0.0, *l), (1.0, *l)], RGBColor(90, 70, 50).stroke_width(1))
+            PathElement::new(
+                vec![(0.0, *l), (1.0, *l)],
+                RGBColor(90, 70, 50).stroke_width(1),
+            )
         }))?;
         Ok(())
     }
@@ -228,7 +238,7 @@ impl Figure for TopView<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<(), DB> {
         let s = Scale::of(root.dim_in_pixel());
         let body = root.titled(self.title, s.title())?;
-        let (w, h) = body.dim_in_pixel();
+        let (w, _) = body.dim_in_pixel();
         let side_w = s.px(290.0).min(w / 3);
         let (map_area, side) = body.split_horizontally(w - side_w);
         let (yl, xl) = (s.px(85.0), s.px(65.0));
@@ -286,29 +296,13 @@ impl Figure for TopView<'_> {
 
         let span = (self.x.1 - self.x.0).max(self.y.1 - self.y.0);
         let (dash, gap) = (span / 120.0, span / 200.0);
-        for (k, win) in self.world.channel.interference().iter().enumerate() {
+        for win in self.world.channel.interference() {
             let ring = style::circle(win.center[0], win.center[1], win.radius, 120);
             chart.draw_series(
                 style::dashes(&ring, dash * 0.6, gap)
                     .into_iter()
                     .map(|d| PathElement::new(d, style::INTERFERENCE.stroke_width(s.px(2.5)))),
             )?;
-            let label = format!(
-                "W{}: {}-{} s, {} dB",
-                k + 1,
-                format_value(win.time[0]),
-                format_value(win.time[1]),
-                format_value(win.loss_db)
-            );
-            let text = s
-                .note()
-                .color(&style::INTERFERENCE)
-                .pos(Pos::new(HPos::Center, VPos::Bottom));
-            chart.draw_series(std::iter::once(Text::new(
-                label,
-                (win.center[0], win.center[1] + win.radius),
-                text,
-            )))?;
         }
 
         let size = |i: usize| self.world.spec.uavs.get(i).map_or(1.0, |u| u.size);
@@ -336,14 +330,31 @@ impl Figure for TopView<'_> {
                 pts.clone(),
                 c.stroke_width(s.px(3.0)),
             )))?;
-            chart.draw_series(
-                pts.iter()
-                    .map(|p| Circle::new(*p, s.px(4.5), c.filled())),
-            )?;
+            chart.draw_series(pts.iter().map(|p| Circle::new(*p, s.px(4.5), c.filled())))?;
         }
 
-        // Outages: a mark at every step out of contact, the times once per outage.
-        let area = chart.plotting_area();
+        // Ground nodes, their labels reserved before any outage label is placed.
+        let (bx, by) = chart.plotting_area().get_pixel_range();
+        let mut labels = Labels::new([bx.start, by.start, bx.end, by.end]);
+        let node_text: TextStyle = (FONT, s.font(18.0)).into_font().color(&BLACK);
+        for g in &self.world.ground_nodes {
+            let at = chart.backend_coord(&(g.position.x, g.position.y));
+            draw_shape(root, at, s.off(9.0), node_shape(&g.name), BLACK, s)?;
+            let (w, h) = root.estimate_text_size(&g.name, &node_text)?;
+            let tl = (at.0 + s.off(11.0), at.1 + s.off(4.0));
+            labels.reserve([
+                at.0 - s.off(10.0),
+                at.1 - s.off(10.0),
+                at.0 + s.off(10.0),
+                at.1 + s.off(10.0),
+            ]);
+            labels.reserve([tl.0, tl.1, tl.0 + w as i32, tl.1 + h as i32]);
+            root.draw(&Text::new(g.name.clone(), tl, node_text.clone()))?;
+        }
+
+        // Outages: a mark at every step out of contact; one label per outage with its
+        // times, placed where it hides no other label (a leader line when moved away).
+        let mut outages = Vec::new();
         for i in 0..self.trace.uav_count() {
             let c = style::uav_colour(i);
             for run in self.trace.runs(i) {
@@ -353,37 +364,68 @@ impl Figure for TopView<'_> {
                 for k in run.first..=run.last {
                     let p = self.trace.positions[k][i];
                     let at = chart.backend_coord(&(p.x, p.y));
-                    draw_mark(root, at, c, s)?;
+                    draw_shape(root, at, s.off(4.5), Shape::RingCross, c, s)?;
                 }
-                let p = self.trace.positions[run.first][i];
-                let (t0, t1) = (self.trace.times[run.first], self.trace.times[run.last]);
-                let label = if run.first == run.last {
-                    format!("t {} s", format_value(t0))
-                } else {
-                    format!("t {}-{} s", format_value(t0), format_value(t1))
-                };
-                let text = (FONT, s.font(15.0))
-                    .into_font()
-                    .color(&style::shade(c, 0.8))
-                    .pos(Pos::new(HPos::Left, VPos::Bottom));
-                area.draw(
-                    &(EmptyElement::at((p.x, p.y))
-                        + Text::new(label, (s.off(8.0), -s.off(6.0)), text)),
-                )?;
+                outages.push((i, run));
             }
         }
+        for (i, run) in outages {
+            let c = style::shade(style::uav_colour(i), 0.85);
+            let p = self.trace.positions[run.first][i];
+            let at = chart.backend_coord(&(p.x, p.y));
+            let (t0, t1) = (self.trace.times[run.first], self.trace.times[run.last]);
+            let label = if run.first == run.last {
+                format!("{} s", format_value(t0))
+            } else {
+                format!("{}-{} s", format_value(t0), format_value(t1))
+            };
+            let text: TextStyle = (FONT, s.font(15.0)).into_font().color(&c);
+            let (w, h) = root.estimate_text_size(&label, &text)?;
+            let Some(tl) = labels.place(at, (w as i32, h as i32), s) else {
+                continue;
+            };
+            let pad = s.off(2.0);
+            let rect = [
+                (tl.0 - pad, tl.1 - pad),
+                (tl.0 + w as i32 + pad, tl.1 + h as i32 + pad),
+            ];
+            let near = (
+                at.0.clamp(rect[0].0, rect[1].0),
+                at.1.clamp(rect[0].1, rect[1].1),
+            );
+            if (near.0 - at.0).abs() + (near.1 - at.1).abs() > s.off(14.0) {
+                root.draw(&PathElement::new(
+                    vec![at, near],
+                    c.mix(0.8).stroke_width(1),
+                ))?;
+            }
+            root.draw(&Rectangle::new(rect, WHITE.mix(0.8).filled()))?;
+            root.draw(&Rectangle::new(rect, c.mix(0.6).stroke_width(1)))?;
+            root.draw(&Text::new(label, tl, text))?;
+        }
 
-        for g in &self.world.ground_nodes {
-            let at = chart.backend_coord(&(g.position.x, g.position.y));
-            draw_shape(root, at, s.off(9.0), node_shape(&g.name), BLACK, s)?;
-            let text = (FONT, s.font(18.0))
-                .into_font()
-                .color(&BLACK)
-                .pos(Pos::new(HPos::Left, VPos::Top));
-            area.draw(
-                &(EmptyElement::at((g.position.x, g.position.y))
-                    + Text::new(g.name.clone(), (s.off(11.0), s.off(6.0)), text)),
-            )?;
+        // Interference windows: a label above each disk, on a white ground.
+        for (k, win) in self.world.channel.interference().iter().enumerate() {
+            let label = format!(
+                "W{}: {}-{} s, {} dB",
+                k + 1,
+                format_value(win.time[0]),
+                format_value(win.time[1]),
+                format_value(win.loss_db)
+            );
+            let text: TextStyle = (FONT, s.font(15.0)).into_font().color(&style::INTERFERENCE);
+            let (w, h) = root.estimate_text_size(&label, &text)?;
+            let top = chart.backend_coord(&(win.center[0], win.center[1] + win.radius));
+            let Some(tl) = labels.place(top, (w as i32, h as i32), s) else {
+                continue;
+            };
+            let pad = s.off(2.0);
+            let rect = [
+                (tl.0 - pad, tl.1 - pad),
+                (tl.0 + w as i32 + pad, tl.1 + h as i32 + pad),
+            ];
+            root.draw(&Rectangle::new(rect, WHITE.mix(0.8).filled()))?;
+            root.draw(&Text::new(label, tl, text))?;
         }
 
         // Side panel: colour bar above, legend below.
@@ -394,14 +436,63 @@ impl Figure for TopView<'_> {
     }
 }
 
-/// The out-of-contact mark at pixel `at` (root coordinates).
-fn draw_mark<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    at: (i32, i32),
-    c: RGBColor,
-    s: Scale,
-) -> DrawResult<(), DB> {
-    draw_shape(root, at, s.off(6.0), Shape::RingCross, c, s)
+/// Pixel boxes already taken by labels, and the search for a free place for a new one.
+struct Labels {
+    /// [x0, y0, x1, y1] the labels must stay in.
+    bounds: [i32; 4],
+    taken: Vec<[i32; 4]>,
+}
+
+impl Labels {
+    fn new(bounds: [i32; 4]) -> Self {
+        Self {
+            bounds,
+            taken: Vec::new(),
+        }
+    }
+
+    fn reserve(&mut self, r: [i32; 4]) {
+        self.taken.push(r);
+    }
+
+    /// Top-left corner of a free `w` x `h` box near `at` (nearest candidates first), taken.
+    fn place(&mut self, at: (i32, i32), (w, h): (i32, i32), s: Scale) -> Option<(i32, i32)> {
+        let pad = s.off(3.0);
+        for d in [8.0, 20.0, 34.0, 52.0, 75.0, 100.0, 130.0] {
+            let d = s.off(d);
+            let candidates = [
+                (d, -d - h),
+                (d, d),
+                (-d - w, -d - h),
+                (-d - w, d),
+                (d, -h / 2),
+                (-d - w, -h / 2),
+                (-w / 2, -d - h),
+                (-w / 2, d),
+            ];
+            for (dx, dy) in candidates {
+                let r = [
+                    at.0 + dx - pad,
+                    at.1 + dy - pad,
+                    at.0 + dx + w + pad,
+                    at.1 + dy + h + pad,
+                ];
+                let inside = r[0] >= self.bounds[0]
+                    && r[1] >= self.bounds[1]
+                    && r[2] <= self.bounds[2]
+                    && r[3] <= self.bounds[3];
+                let free = self
+                    .taken
+                    .iter()
+                    .all(|t| r[2] <= t[0] || r[0] >= t[2] || r[3] <= t[1] || r[1] >= t[3]);
+                if inside && free {
+                    self.taken.push(r);
+                    return Some((at.0 + dx, at.1 + dy));
+                }
+            }
+        }
+        None
+    }
 }
 
 #[cfg(test)]
@@ -437,7 +528,10 @@ mod tests {
             .build_cartesian_2d(Axis::linear(0.0, dx), Axis::linear(0.0, dy))
             .unwrap();
         // One metre is the same number of pixels along both axes.
-        let (a, b) = (chart.backend_coord(&(0.0, 0.0)), chart.backend_coord(&(dx, dy)));
+        let (a, b) = (
+            chart.backend_coord(&(0.0, 0.0)),
+            chart.backend_coord(&(dx, dy)),
+        );
         let sx = f64::from(b.0 - a.0) / dx;
         let sy = f64::from(a.1 - b.1) / dy;
         assert!((sx / sy - 1.0).abs() < 0.005, "sx {sx} sy {sy}");

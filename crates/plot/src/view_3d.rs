@@ -35,6 +35,9 @@ const MESH_CELLS: usize = 36;
 /// Vertical extent of the chart box relative to its longer horizontal side.
 const HEIGHT_SHARE: f64 = 0.42;
 
+/// A terrain facet: four corners (east, altitude, north).
+type Quad = [(f64, f64, f64); 4];
+
 struct View3d<'a> {
     world: &'a World,
     plan: &'a Plan,
@@ -80,7 +83,7 @@ impl<'a> View3d<'a> {
     }
 
     /// Terrain facets: corners (x, altitude, y) and the facet's colour.
-    fn facets(&self) -> Vec<([(f64, f64, f64); 4], RGBColor)> {
+    fn facets(&self) -> Vec<(Quad, RGBColor)> {
         let t = &self.world.terrain;
         let (dx, dy) = self.dims();
         let cell = dx.max(dy) / MESH_CELLS as f64;
@@ -159,6 +162,51 @@ impl<'a> View3d<'a> {
     }
 }
 
+impl View3d<'_> {
+    /// Axis titles beside the box edges plotters labels: the two front edges of the floor
+    /// (the ones lowest on screen) and the leftmost vertical edge.
+    fn draw_axis_titles<DB: DrawingBackend, C: CoordTranslate<From = (f64, f64, f64)>>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        coord: &C,
+        s: Scale,
+    ) -> DrawResult<(), DB> {
+        let (x, y, a) = (self.x, self.y, self.alt);
+        let at = |px: f64, py: f64, pa: f64| coord.translate(&(px, pa, py));
+        let mid_x = (x.0 + x.1) / 2.0;
+        let mid_y = (y.0 + y.1) / 2.0;
+        // Front edges: the floor edge of each axis that is lower on screen.
+        let ex = [y.0, y.1].map(|yy| at(mid_x, yy, a.0));
+        let ex = if ex[0].1 >= ex[1].1 { ex[0] } else { ex[1] };
+        let ey = [x.0, x.1].map(|xx| at(xx, mid_y, a.0));
+        let ey = if ey[0].1 >= ey[1].1 { ey[0] } else { ey[1] };
+        let corners = [(x.0, y.0), (x.0, y.1), (x.1, y.0), (x.1, y.1)];
+        let left = corners
+            .iter()
+            .map(|(cx, cy)| at(*cx, *cy, a.1))
+            .min_by_key(|p| p.0)
+            .unwrap_or((0, 0));
+        let centre = root.dim_in_pixel();
+        let (cx, _) = (centre.0 as i32 / 2, centre.1 as i32 / 2);
+        let push = s.off(62.0);
+        let style = s.axis_desc().pos(Pos::new(HPos::Center, VPos::Center));
+        // Move each floor title away from the box, outwards from the figure's middle.
+        let away = |p: (i32, i32)| {
+            let dx = if p.0 < cx { -push / 2 } else { push / 2 };
+            (p.0 + dx, p.1 + push)
+        };
+        root.draw(&Text::new("x (east), m", away(ex), style.clone()))?;
+        root.draw(&Text::new("y (north), m", away(ey), style.clone()))?;
+        let up = s.axis_desc().pos(Pos::new(HPos::Left, VPos::Bottom));
+        root.draw(&Text::new(
+            "altitude, m",
+            ((left.0 - s.off(20.0)).max(s.off(6.0)), left.1 - s.off(22.0)),
+            up,
+        ))?;
+        Ok(())
+    }
+}
+
 impl Figure for View3d<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<(), DB> {
         let s = Scale::of(root.dim_in_pixel());
@@ -172,11 +220,13 @@ impl Figure for View3d<'_> {
             .build_cartesian_3d(
                 Axis::linear(self.x.0, self.x.1),
                 Axis::linear(self.alt.0, self.alt.1),
-                Axis::linear(self.y.0, self.y.1),
+                // plotters' (x, y, z) frame is right-handed; (east, up, north) is not, so
+                // north runs along reversed z, or the map would be drawn mirrored.
+                Axis::linear(self.y.0, self.y.1).reversed(),
             )?;
         let (pw, ph) = plot.dim_in_pixel();
         let (dx, dy) = self.dims();
-        let base = f64::from(pw.min(ph)) * 0.8;
+        let base = f64::from(pw.min(ph)) * 0.78;
         let long = dx.max(dy);
         let size = (
             (base * dx / long).round() as i32,
@@ -190,7 +240,8 @@ impl Figure for View3d<'_> {
             pb.scale = 0.95;
             pb.into_matrix()
         });
-        let exaggeration = (f64::from(size.1) / (self.alt.1 - self.alt.0)) / (f64::from(size.0) / dx);
+        let exaggeration =
+            (f64::from(size.1) / (self.alt.1 - self.alt.0)) / (f64::from(size.0) / dx);
 
         chart
             .configure_axes()
@@ -204,7 +255,7 @@ impl Figure for View3d<'_> {
             .draw()?;
 
         // Painter's order: farthest facets first.
-        let mut facets: Vec<(i32, [(f64, f64, f64); 4], RGBColor)> = {
+        let mut facets: Vec<(i32, Quad, RGBColor)> = {
             let coord = chart.as_coord_spec();
             self.facets()
                 .into_iter()
@@ -216,7 +267,7 @@ impl Figure for View3d<'_> {
                 })
                 .collect()
         };
-        facets.sort_by(|a, b| b.0.cmp(&a.0));
+        facets.sort_by_key(|f| std::cmp::Reverse(f.0));
         let edge = BLACK.mix(0.12).stroke_width(1);
         for (_, q, c) in &facets {
             chart.draw_series(std::iter::once(Polygon::new(q.to_vec(), c.filled())))?;
@@ -231,7 +282,9 @@ impl Figure for View3d<'_> {
             let c = style::uav_colour(i);
             let mut shadow = Vec::new();
             for w in p.abs.windows(2) {
-                let n = ((w[1].truncate().distance(w[0].truncate())) / 10.0).ceil().max(1.0) as usize;
+                let n = ((w[1].truncate().distance(w[0].truncate())) / 10.0)
+                    .ceil()
+                    .max(1.0) as usize;
                 for k in 0..=n {
                     let q = w[0].lerp(w[1], k as f64 / n as f64);
                     shadow.push((q.x, t.height(q.x, q.y) + 1.0, q.y));
@@ -258,18 +311,17 @@ impl Figure for View3d<'_> {
                     .collect::<Vec<_>>(),
                 solid,
             )))?;
-            for f in [0.5, 1.0] {
-                let z = ground + th.z * f;
-                chart.draw_series(std::iter::once(PathElement::new(
-                    ring.iter().map(|(a, b)| (*a, z, *b)).collect::<Vec<_>>(),
-                    solid,
-                )))?;
-            }
-            for (a, b) in ring.iter().step_by(4) {
+            chart.draw_series(std::iter::once(PathElement::new(
+                ring.iter()
+                    .map(|(a, b)| (*a, drawn, *b))
+                    .collect::<Vec<_>>(),
+                solid,
+            )))?;
+            for (a, b) in ring.iter().step_by(6) {
                 let g = t.height(*a, *b);
                 chart.draw_series(std::iter::once(PathElement::new(
                     vec![(*a, g, *b), (*a, drawn.max(g), *b)],
-                    style::THREAT_DARK.mix(0.8).stroke_width(s.px(1.5)),
+                    style::THREAT_DARK.mix(0.7).stroke_width(s.px(1.5)),
                 )))?;
                 // Above the drawn height: dashed, the cylinder goes on.
                 let (lo, hi) = (drawn.max(g), self.alt.1);
@@ -279,7 +331,7 @@ impl Figure for View3d<'_> {
                     let z1 = lo + (hi - lo) * (2 * k + 1) as f64 / (2 * n) as f64;
                     chart.draw_series(std::iter::once(PathElement::new(
                         vec![(*a, z0, *b), (*a, z1, *b)],
-                        style::THREAT.mix(0.5).stroke_width(1),
+                        style::THREAT.mix(0.45).stroke_width(1),
                     )))?;
                 }
             }
@@ -292,7 +344,10 @@ impl Figure for View3d<'_> {
                 pts.clone(),
                 c.stroke_width(s.px(3.0)),
             )))?;
-            chart.draw_series(pts.into_iter().map(|q| Circle::new(q, s.px(4.0), c.filled())))?;
+            chart.draw_series(
+                pts.into_iter()
+                    .map(|q| Circle::new(q, s.px(4.0), c.filled())),
+            )?;
         }
 
         let text = (FONT, s.font(17.0))
@@ -315,6 +370,7 @@ impl Figure for View3d<'_> {
             ))?;
         }
 
+        self.draw_axis_titles(root, chart.as_coord_spec(), s)?;
         legend::draw(&side, &self.legend_entries(s, exaggeration), s.off(30.0), s)
     }
 }

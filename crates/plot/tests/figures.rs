@@ -94,7 +94,11 @@ fn check_png(path: &Path, size: (u32, u32)) {
         .collect();
     let mean = luma.iter().sum::<f64>() / luma.len() as f64;
     let var = luma.iter().map(|l| (l - mean).powi(2)).sum::<f64>() / luma.len() as f64;
-    assert!(var > 200.0, "{}: nearly blank (variance {var:.1})", path.display());
+    assert!(
+        var > 200.0,
+        "{}: nearly blank (variance {var:.1})",
+        path.display()
+    );
     // The title is drawn: dark pixels in the top band.
     let band = (size.1 / 18) as usize;
     let dark = img
@@ -103,7 +107,11 @@ fn check_png(path: &Path, size: (u32, u32)) {
         .flatten()
         .filter(|p| u32::from(p[0]) + u32::from(p[1]) + u32::from(p[2]) < 300)
         .count();
-    assert!(dark > 100, "{}: no title text ({dark} dark pixels)", path.display());
+    assert!(
+        dark > 100,
+        "{}: no title text ({dark} dark pixels)",
+        path.display()
+    );
 }
 
 fn check_svg(path: &Path, size: (u32, u32)) {
@@ -115,7 +123,11 @@ fn check_svg(path: &Path, size: (u32, u32)) {
         "{}: not an SVG document",
         path.display()
     );
-    assert!(text.trim_end().ends_with("</svg>"), "{}: unterminated", path.display());
+    assert!(
+        text.trim_end().ends_with("</svg>"),
+        "{}: unterminated",
+        path.display()
+    );
     assert!(
         text.contains(&format!("width=\"{}\"", size.0))
             && text.contains(&format!("height=\"{}\"", size.1)),
@@ -123,6 +135,37 @@ fn check_svg(path: &Path, size: (u32, u32)) {
         path.display()
     );
     assert!(text.contains("<text"), "{}: no text", path.display());
+}
+
+/// The relief is one embedded PNG covering the plotting area exactly: its pixel size has
+/// the map's aspect ratio (one metre east = one metre north), and it is a valid data URL.
+fn check_equal_aspect(svg: &Path, world: &World) {
+    let text = std::fs::read_to_string(svg).expect("the SVG was written");
+    let at = text
+        .find("<image ")
+        .expect("the relief is embedded as an image");
+    let tag = &text[at..at + text[at..].find('>').expect("the tag ends")];
+    let attr = |name: &str| -> f64 {
+        let key = format!(" {name}=\"");
+        let from = tag.find(&key).expect("the attribute is there") + key.len();
+        tag[from..from + tag[from..].find('"').expect("the value ends")]
+            .parse()
+            .expect("a number")
+    };
+    let (w, h) = (attr("width"), attr("height"));
+    let m = &world.spec.map;
+    let aspect = (m.x[1] - m.x[0]) / (m.y[1] - m.y[0]);
+    // One pixel of rounding on a few hundred.
+    assert!(
+        (w / h - aspect).abs() < 2.0 / h * aspect,
+        "{}: relief {w} x {h} px, map aspect {aspect}",
+        svg.display()
+    );
+    assert!(
+        tag.contains("href=\"data:image/png;base64,"),
+        "{}",
+        svg.display()
+    );
 }
 
 fn check(w: &Written, size: (u32, u32)) {
@@ -138,9 +181,17 @@ fn every_figure_renders_on_the_tiny_scenario() {
     let title = "tiny: dls-smpso, seed 7";
     let size = Target::DEFAULT_SIZE;
 
-    check(&top_view(&world, &plan, title, dir.path().join("top")).unwrap(), size);
-    check(&view_3d(&world, &plan, title, dir.path().join("3d")).unwrap(), size);
-    check(&comm_timeline(&world, &plan, title, dir.path().join("comm")).unwrap(), size);
+    let top = top_view(&world, &plan, title, dir.path().join("top")).unwrap();
+    check(&top, size);
+    check_equal_aspect(&top.svg, &world);
+    check(
+        &view_3d(&world, &plan, title, dir.path().join("3d")).unwrap(),
+        size,
+    );
+    check(
+        &comm_timeline(&world, &plan, title, dir.path().join("comm")).unwrap(),
+        size,
+    );
 
     let trace: Vec<f64> = (0..41)
         .map(|k| 4000.0 * (-(k as f64) / 8.0).exp() + 900.0)
@@ -158,11 +209,20 @@ fn every_figure_renders_on_the_tiny_scenario() {
     penalised[0] = f64::INFINITY;
     penalised[1] = f64::MAX;
     let small = Target::new(dir.path().join("conv_small")).with_size(800, 600);
-    check(&convergence_run(&penalised, None, title, small).unwrap(), (800, 600));
+    check(
+        &convergence_run(&penalised, None, title, small).unwrap(),
+        (800, 600),
+    );
 
     let recs = records();
-    check(&convergence_bench(&recs, "tiny", dir.path().join("bench_conv")).unwrap(), size);
-    check(&bench_boxplots(&recs, "tiny", dir.path().join("bench_box")).unwrap(), size);
+    check(
+        &convergence_bench(&recs, "tiny", dir.path().join("bench_conv")).unwrap(),
+        size,
+    );
+    check(
+        &bench_boxplots(&recs, "tiny", dir.path().join("bench_box")).unwrap(),
+        size,
+    );
 }
 
 #[test]
@@ -196,7 +256,12 @@ fn failures_name_the_file() {
     assert!(matches!(e, PlotError::Folder { .. }), "{e}");
     assert!(e.to_string().contains("top.png"), "{e}");
 
-    let e = view_3d(&world, &plan, "t", Target::new(dir.path().join("s")).with_size(50, 50))
-        .unwrap_err();
+    let e = view_3d(
+        &world,
+        &plan,
+        "t",
+        Target::new(dir.path().join("s")).with_size(50, 50),
+    )
+    .unwrap_err();
     assert!(matches!(e, PlotError::TooSmall { .. }), "{e}");
 }

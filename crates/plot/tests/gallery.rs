@@ -30,7 +30,11 @@ fn synthetic_records() -> Vec<RunRecord> {
             let spread = ((run * 7 + a * 3) % 11) as f64;
             let end = 5200.0 + 150.0 * a as f64 + 60.0 * spread;
             let penalised = (run + a) % 4 == 0;
-            let cost = if penalised { end + 3.0e4 * (1.0 + spread) } else { end };
+            let cost = if penalised {
+                end + 3.0e4 * (1.0 + spread)
+            } else {
+                end
+            };
             let convergence = (0..=200)
                 .map(|k| cost + 2.0e5 * (-(k as f64) / (10.0 + 3.0 * a as f64)).exp())
                 .collect();

@@ -177,7 +177,11 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
         return Ok(());
     }
     let summary = summarize_records(spec.master_seed, &outcome.records);
-    write_summary(&args.out, &summary)
+    write_summary(&args.out, &summary)?;
+    for f in super::plot::bench_figures(&args.out, &outcome.records)? {
+        eprintln!("wrote {} (and .svg)", f.display());
+    }
+    Ok(())
 }
 
 pub fn run_aggregate(args: &AggregateArgs) -> Result<()> {

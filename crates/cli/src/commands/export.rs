@@ -82,13 +82,25 @@ pub fn run(args: &ExportArgs) -> Result<()> {
         .transpose()?;
     let scenario = match &args.scenario {
         Some(s) => s.clone(),
-        None => args.dir.join("scenario.toml").display().to_string(),
+        None => {
+            let p = args.dir.join("scenario.toml");
+            anyhow::ensure!(
+                p.exists(),
+                "{}: not found (written by `swarmplan plan`); name the scenario with \
+                 --scenario NAME|FILE",
+                p.display()
+            );
+            p.display().to_string()
+        }
     };
     let (loaded, origin) = load_spec_with_origin(&scenario)
         .with_context(|| format!("{}: the scenario of the plan", args.dir.display()))?;
     let terrain = terrain_override(&loaded, args.terrain.as_deref());
     let world = build_world(&loaded, terrain.as_deref())?;
-    let plan_path = args.plan.clone().unwrap_or_else(|| args.dir.join("plan.json"));
+    let plan_path = args
+        .plan
+        .clone()
+        .unwrap_or_else(|| args.dir.join("plan.json"));
     let plan = read_plan(&plan_path, &world)?;
     let (frame, source) = resolve_frame(&loaded, origin, terrain.as_deref(), explicit)?;
     let out = args.out.clone().unwrap_or_else(|| args.dir.clone());
@@ -101,7 +113,11 @@ pub fn run(args: &ExportArgs) -> Result<()> {
 }
 
 fn georeferenced_by(source: FrameSource, frame: &swarmplan_io::geo::LocalFrame) -> String {
-    format!("georeferenced by {}: {}", source.describe(), frame.describe())
+    format!(
+        "georeferenced by {}: {}",
+        source.describe(),
+        frame.describe()
+    )
 }
 
 /// `plan --export FORMATS [--origin LAT,LON[,ALT]]`: exports the plan just made into

@@ -1,9 +1,12 @@
 //! One module per subcommand.
 pub mod bench;
 pub mod evaluate;
+pub mod export;
 pub mod plan;
+pub mod plot;
 pub mod report;
 pub mod scenario;
+pub mod scenario_new;
 
 use anyhow::Result;
 use swarmplan_core::world::World;

@@ -46,6 +46,15 @@ pub struct PlanArgs {
     /// Print one JSON object on stdout instead of tables.
     #[arg(long)]
     pub json: bool,
+    /// Skip the figures (top view, 3-D view, convergence, communication timeline).
+    #[arg(long)]
+    pub no_figures: bool,
+    /// Also export the plan into --out: qgc-plan, wpl, geojson, kml, csv (comma-separated) or all.
+    #[arg(long)]
+    pub export: Option<String>,
+    /// Geodetic origin LAT,LON[,ALT] for --export (overrides [geo] origin and the DEM's CRS).
+    #[arg(long, allow_hyphen_values = true, requires = "export")]
+    pub origin: Option<String>,
 }
 
 /// Algorithm parameters from a TOML file, then the population flag.
@@ -160,12 +169,41 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         "files".into(),
         serde_json::json!({"plan": plan_path, "convergence": conv_path}),
     );
+    if let Some(formats) = &args.export {
+        let files = super::export::export_planned(
+            &args.scenario.scenario,
+            args.scenario.terrain.as_deref(),
+            &world,
+            &result.plan,
+            formats,
+            args.origin.as_deref(),
+            &args.out,
+        )?;
+        o.insert("exports".into(), serde_json::json!(files));
+    }
     let run_path = args.out.join("run.json");
     std::fs::write(&run_path, serde_json::to_string_pretty(&obj)? + "\n")
         .with_context(|| format!("{}: cannot write", run_path.display()))?;
     let scenario_path = args.out.join("scenario.toml");
-    std::fs::write(&scenario_path, to_toml(&world.spec))
+    let mut written_spec = world.spec.clone();
+    if written_spec.terrain.source != "procedural" {
+        // Absolute, so the folder's scenario.toml resolves from anywhere.
+        if let Ok(abs) = std::fs::canonicalize(&written_spec.terrain.source) {
+            written_spec.terrain.source = abs.display().to_string();
+        }
+    }
+    std::fs::write(&scenario_path, to_toml(&written_spec))
         .with_context(|| format!("{}: cannot write", scenario_path.display()))?;
+    let trace: Vec<f64> = result.outcome.trace.iter().map(|r| r.best_cost).collect();
+    let title = format!(
+        "{} - {} - seed {}",
+        world.spec.name, result.algorithm, result.seed
+    );
+    let figures = if args.no_figures {
+        Vec::new()
+    } else {
+        super::plot::plan_figures(&args.out, &world, &result.plan, &trace, &title)?
+    };
     if args.json {
         println!("{}", serde_json::to_string_pretty(&obj)?);
     } else {
@@ -186,6 +224,9 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             run_path.display(),
             scenario_path.display()
         );
+        for f in &figures {
+            println!("wrote {} (and .svg)", f.display());
+        }
     }
     Ok(())
 }

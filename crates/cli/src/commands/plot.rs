@@ -21,12 +21,18 @@ pub struct PlotArgs {
 }
 
 /// The figures of one plan; `title` names scenario, algorithm and seed.
-pub fn plan_figures(dir: &Path, world: &World, plan: &Plan, trace: &[f64], title: &str) -> Result<Vec<PathBuf>> {
+pub fn plan_figures(
+    dir: &Path,
+    world: &World,
+    plan: &Plan,
+    trace: &[f64],
+    title: &str,
+) -> Result<Vec<PathBuf>> {
     let stem = |name: &str| dir.join(name);
-    swarmplan_plot::top_view(world, plan, title, &stem("top_view"))?;
-    swarmplan_plot::view_3d(world, plan, title, &stem("view_3d"))?;
-    swarmplan_plot::convergence_run(trace, None, title, &stem("convergence"))?;
-    swarmplan_plot::comm_timeline(world, plan, title, &stem("comm_timeline"))?;
+    swarmplan_plot::top_view(world, plan, title, stem("top_view"))?;
+    swarmplan_plot::view_3d(world, plan, title, stem("view_3d"))?;
+    swarmplan_plot::convergence_run(trace, None, title, stem("convergence"))?;
+    swarmplan_plot::comm_timeline(world, plan, title, stem("comm_timeline"))?;
     Ok(["top_view", "view_3d", "convergence", "comm_timeline"]
         .iter()
         .map(|n| stem(n).with_extension("png"))
@@ -40,7 +46,16 @@ pub fn bench_figures(dir: &Path, records: &[RunRecord]) -> Result<Vec<PathBuf>> 
     scenarios.dedup();
     let mut out = Vec::new();
     for sc in scenarios {
-        let safe: String = sc.chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' }).collect();
+        let safe: String = sc
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
         let boxes = dir.join(format!("bench_{safe}"));
         swarmplan_plot::bench_boxplots(records, sc, &boxes)?;
         let conv = dir.join(format!("convergence_{safe}"));
@@ -53,7 +68,8 @@ pub fn bench_figures(dir: &Path, records: &[RunRecord]) -> Result<Vec<PathBuf>> 
 
 /// Reads `convergence.csv` (best_cost column) of a plan folder.
 fn read_trace(path: &Path) -> Result<Vec<f64>> {
-    let text = std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))?;
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("{}: cannot read", path.display()))?;
     let mut lines = text.lines();
     let header = lines.next().unwrap_or_default();
     let col = header
@@ -66,7 +82,13 @@ fn read_trace(path: &Path) -> Result<Vec<f64>> {
             l.split(',')
                 .nth(col)
                 .and_then(|v| v.parse::<f64>().ok())
-                .with_context(|| format!("{}: line {}: expected a number in column best_cost", path.display(), i + 2))
+                .with_context(|| {
+                    format!(
+                        "{}: line {}: expected a number in column best_cost",
+                        path.display(),
+                        i + 2
+                    )
+                })
         })
         .collect()
 }
@@ -75,21 +97,35 @@ pub fn run(args: &PlotArgs) -> Result<()> {
     let dir = &args.dir;
     let files = if dir.join("plan.json").exists() {
         let scenario = dir.join("scenario.toml");
-        anyhow::ensure!(scenario.exists(), "{}: missing; `swarmplan plan --out {}` writes it", scenario.display(), dir.display());
+        anyhow::ensure!(
+            scenario.exists(),
+            "{}: missing; `swarmplan plan --out {}` writes it",
+            scenario.display(),
+            dir.display()
+        );
         let world = build_world(&load_spec(&scenario.display().to_string())?, None)?;
         let plan = read_plan(&dir.join("plan.json"), &world)?;
         let trace = read_trace(&dir.join("convergence.csv"))?;
         let title = match std::fs::read_to_string(dir.join("run.json")) {
             Ok(t) => {
                 let v: serde_json::Value = serde_json::from_str(&t).unwrap_or_default();
-                format!("{} - {} - seed {}", world.spec.name, v["algorithm"].as_str().unwrap_or("?"), v["seed"])
+                format!(
+                    "{} - {} - seed {}",
+                    world.spec.name,
+                    v["algorithm"].as_str().unwrap_or("?"),
+                    v["seed"]
+                )
             }
             Err(_) => world.spec.name.clone(),
         };
         plan_figures(dir, &world, &plan, &trace, &title)?
     } else if dir.join("runs.jsonl").exists() {
         let records = read_records(dir, false)?;
-        anyhow::ensure!(!records.is_empty(), "{}: no run records", dir.join("runs.jsonl").display());
+        anyhow::ensure!(
+            !records.is_empty(),
+            "{}: no run records",
+            dir.join("runs.jsonl").display()
+        );
         bench_figures(dir, &records)?
     } else {
         anyhow::bail!("{}: holds neither plan.json nor runs.jsonl", dir.display());

@@ -6,7 +6,9 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use clap::Args;
-use swarmplan_io::geo::{new_scenario, parse_lat_lon, scenario_toml_with_origin, NewScenarioRequest};
+use swarmplan_io::geo::{
+    new_scenario, parse_lat_lon, scenario_toml_with_origin, NewScenarioRequest,
+};
 
 #[derive(Debug, Args)]
 pub struct ScenarioNewArgs {
@@ -37,9 +39,10 @@ pub struct ScenarioNewArgs {
     pub margin: Option<f64>,
 }
 
-/// `terrain.source` for the TOML: relative to the output file's folder when the DEM lies
-/// below it, else absolute; as given when the TOML is printed (relative paths then resolve
-/// from the folder the TOML is saved in, usually the current one).
+/// `terrain.source` for the TOML: relative to the output file's folder (scenario files
+/// resolve terrain paths from their own folder); as given when the TOML is printed
+/// (relative paths then resolve from the folder the TOML is saved in, usually the current
+/// one).
 fn terrain_source(terrain: &Path, out: Option<&Path>) -> String {
     let Some(out) = out else {
         return terrain.display().to_string();
@@ -49,11 +52,28 @@ fn terrain_source(terrain: &Path, out: Option<&Path>) -> String {
         .filter(|d| !d.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
     match (terrain.canonicalize(), dir.canonicalize()) {
-        (Ok(t), Ok(d)) => t
-            .strip_prefix(&d)
-            .map_or_else(|_| t.display().to_string(), |r| r.display().to_string()),
+        (Ok(t), Ok(d)) => relative(&t, &d).display().to_string(),
         _ => terrain.display().to_string(),
     }
+}
+
+/// `target` relative to the folder `base` (both absolute): `..` for each component of
+/// `base` past their common prefix, then the rest of `target`.
+fn relative(target: &Path, base: &Path) -> PathBuf {
+    let t: Vec<_> = target.components().collect();
+    let b: Vec<_> = base.components().collect();
+    let common = t.iter().zip(&b).take_while(|(x, y)| x == y).count();
+    if common == 0 {
+        return target.to_path_buf();
+    }
+    let mut out = PathBuf::new();
+    for _ in common..b.len() {
+        out.push("..");
+    }
+    for c in &t[common..] {
+        out.push(c);
+    }
+    out
 }
 
 fn stem(p: &Path) -> Option<String> {
@@ -69,7 +89,8 @@ pub fn run(args: &ScenarioNewArgs) -> Result<()> {
         .and_then(Path::parent)
         .filter(|d| !d.as_os_str().is_empty())
     {
-        std::fs::create_dir_all(dir).with_context(|| format!("{}: cannot create", dir.display()))?;
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("{}: cannot create", dir.display()))?;
     }
     let name = args
         .name

@@ -19,6 +19,10 @@ pub struct ScenarioSpec {
     pub description: String,
     #[serde(default)]
     pub terrain: TerrainSpec,
+    /// Geodetic origin of the local frame, for exports (optional; a georeferenced GeoTIFF
+    /// also gives one).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub geo: Option<GeoSpec>,
     #[serde(default)]
     pub map: MapSpec,
     #[serde(default)]
@@ -37,6 +41,15 @@ pub struct ScenarioSpec {
     pub timing: TimingSpec,
     #[serde(default)]
     pub planning: PlanningSpec,
+}
+
+/// Where the local frame sits on the Earth.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GeoSpec {
+    /// WGS 84 latitude (deg), longitude (deg) and altitude (m above mean sea level) of the
+    /// local point (0, 0) at local height 0.
+    pub origin: [f64; 3],
 }
 
 /// Where the height grid comes from and how it is read.

@@ -60,6 +60,24 @@ impl ScenarioSpec {
         if self.name.trim().is_empty() {
             return Err(err("name", "a non-empty name", "\"\""));
         }
+        if let Some(g) = &self.geo {
+            let [lat, lon, alt] = g.origin;
+            if !(lat.is_finite() && (-90.0..=90.0).contains(&lat)) {
+                return Err(err(
+                    "geo.origin",
+                    "a latitude in [-90, 90] degrees first",
+                    lat,
+                ));
+            }
+            if !(lon.is_finite() && (-180.0..=180.0).contains(&lon)) {
+                return Err(err(
+                    "geo.origin",
+                    "a longitude in [-180, 180] degrees second",
+                    lon,
+                ));
+            }
+            finite("geo.origin", alt)?;
+        }
         let m = &self.map;
         range("map.x", m.x)?;
         range("map.y", m.y)?;

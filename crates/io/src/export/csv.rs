@@ -6,7 +6,8 @@
 use super::{num, Mission};
 
 /// The header row.
-pub(crate) const COLUMNS: &str = "uav,waypoint,time_s,lat_deg,lon_deg,alt_amsl_m,alt_agl_m,speed_mps";
+pub(crate) const COLUMNS: &str =
+    "uav,waypoint,time_s,lat_deg,lon_deg,alt_amsl_m,alt_agl_m,speed_mps";
 
 /// The CSV text of a mission.
 pub(crate) fn csv(m: &Mission) -> String {

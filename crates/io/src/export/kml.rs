@@ -31,12 +31,18 @@ fn coord(g: &Geodetic, alt: f64) -> String {
 
 /// The KML text of a mission.
 pub(crate) fn kml(m: &Mission) -> String {
-    let colours = ["ff0000ff", "ff00a5ff", "ff00ff00", "ffff0000", "ffff00ff", "ffffff00"];
+    let colours = [
+        "ff0000ff", "ff00a5ff", "ff00ff00", "ffff0000", "ffff00ff", "ffffff00",
+    ];
     let mut s = String::new();
     let _ = writeln!(s, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
     let _ = writeln!(s, r#"<kml xmlns="http://www.opengis.net/kml/2.2">"#);
     let _ = writeln!(s, "<Document>");
-    let _ = writeln!(s, "<name>{}</name>", escape(&format!("swarmplan {}", m.scenario)));
+    let _ = writeln!(
+        s,
+        "<name>{}</name>",
+        escape(&format!("swarmplan {}", m.scenario))
+    );
     let _ = writeln!(s, "<description>{}</description>", escape(&m.header()));
     for (k, c) in colours.iter().enumerate() {
         let _ = writeln!(
@@ -50,7 +56,11 @@ pub(crate) fn kml(m: &Mission) -> String {
          <PolyStyle><color>550000ff</color></PolyStyle></Style>"
     );
     for p in &m.paths {
-        let coords: Vec<String> = p.points.iter().map(|pt| coord(&pt.geo, pt.geo.alt_m)).collect();
+        let coords: Vec<String> = p
+            .points
+            .iter()
+            .map(|pt| coord(&pt.geo, pt.geo.alt_m))
+            .collect();
         let _ = writeln!(s, "<Placemark>");
         let _ = writeln!(s, "<name>uav {}</name>", p.uav);
         let _ = writeln!(

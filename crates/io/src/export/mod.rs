@@ -51,7 +51,13 @@ pub enum ExportFormat {
 }
 
 impl ExportFormat {
-    pub const ALL: [Self; 5] = [Self::QgcPlan, Self::Wpl, Self::GeoJson, Self::Kml, Self::Csv];
+    pub const ALL: [Self; 5] = [
+        Self::QgcPlan,
+        Self::Wpl,
+        Self::GeoJson,
+        Self::Kml,
+        Self::Csv,
+    ];
 
     #[must_use]
     pub fn name(self) -> &'static str {

@@ -212,7 +212,10 @@ mod tests {
     #[test]
     fn axis_points_have_the_textbook_coordinates() {
         let p = geodetic_to_ecef(Geodetic::new(0.0, 0.0, 0.0));
-        assert!((p - DVec3::new(6_378_137.0, 0.0, 0.0)).length() < 1e-9, "{p}");
+        assert!(
+            (p - DVec3::new(6_378_137.0, 0.0, 0.0)).length() < 1e-9,
+            "{p}"
+        );
         let pole = geodetic_to_ecef(Geodetic::new(90.0, 0.0, 0.0));
         assert!((pole.z - Ellipsoid::WGS84.b()).abs() < 1e-9, "{pole}");
         let g = ecef_to_geodetic(DVec3::new(0.0, 0.0, -6_356_852.314_245));

@@ -166,10 +166,7 @@ impl LocalFrame {
                 FrameKind::Geographic {
                     crs,
                     south_west: g.south_west_node,
-                    metres_per_degree: (
-                        dem.cell_metres.0 / g.cell.0,
-                        dem.cell_metres.1 / g.cell.1,
-                    ),
+                    metres_per_degree: (dem.cell_metres.0 / g.cell.0, dem.cell_metres.1 / g.cell.1),
                 }
             }
             Crs::Unknown { .. } => {

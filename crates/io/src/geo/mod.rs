@@ -151,12 +151,17 @@ mod tests {
         assert_eq!(g, Geodetic::new(-10.5, 105.6, 12.0));
         assert_eq!(parse_lat_lon("1,2", "--start").unwrap().alt_m, 0.0);
         let e = parse_lat_lon("95,10", "--start").unwrap_err().to_string();
-        assert!(e.starts_with("--start: latitude") && e.contains("95"), "{e}");
+        assert!(
+            e.starts_with("--start: latitude") && e.contains("95"),
+            "{e}"
+        );
         let e = parse_lat_lon("10,-181", "--goal").unwrap_err().to_string();
         assert!(e.contains("--goal: longitude") && e.contains("-181"), "{e}");
         let e = parse_lat_lon("10,20,30", "--goal").unwrap_err().to_string();
         assert!(e.contains("LAT,LON") && e.contains("10,20,30"), "{e}");
-        let e = parse_lat_lon_alt("ten,20", "--origin").unwrap_err().to_string();
+        let e = parse_lat_lon_alt("ten,20", "--origin")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("--origin") && e.contains("ten,20"), "{e}");
         assert!(parse_lat_lon_alt("1,2,nan", "--origin").is_err());
     }

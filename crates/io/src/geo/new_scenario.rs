@@ -148,7 +148,10 @@ pub fn new_scenario(req: &NewScenarioRequest<'_>) -> Result<NewScenario, GeoErro
         return Err(flag(
             "--goal",
             "a point at least 1 m from --start".into(),
-            format!("{},{} ({distance:.3} m away)", req.goal.lat_deg, req.goal.lon_deg),
+            format!(
+                "{},{} ({distance:.3} m away)",
+                req.goal.lat_deg, req.goal.lon_deg
+            ),
         ));
     }
 
@@ -158,9 +161,10 @@ pub fn new_scenario(req: &NewScenarioRequest<'_>) -> Result<NewScenario, GeoErro
     spec.description = format!(
         "{} UAVs over {} from ({}, {}) to ({}, {}), {:.0} m apart (scenario new)",
         req.uavs,
-        req.terrain
-            .file_name()
-            .map_or_else(|| req.terrain.display().to_string(), |n| n.to_string_lossy().into()),
+        req.terrain.file_name().map_or_else(
+            || req.terrain.display().to_string(),
+            |n| n.to_string_lossy().into()
+        ),
         req.start.lat_deg,
         req.start.lon_deg,
         req.goal.lat_deg,

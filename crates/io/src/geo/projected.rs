@@ -205,6 +205,9 @@ mod tests {
         let (e, n) = z.from_lat_lon(0.0, 3.0).unwrap();
         assert!((e - 500_000.0).abs() < 1e-6 && n.abs() < 1e-6, "{e} {n}");
         let (lat, lon) = z.to_lat_lon(500_000.0, 0.0).unwrap();
-        assert!(lat.abs() < 1e-12 && (lon - 3.0).abs() < 1e-12, "{lat} {lon}");
+        assert!(
+            lat.abs() < 1e-12 && (lon - 3.0).abs() < 1e-12,
+            "{lat} {lon}"
+        );
     }
 }
