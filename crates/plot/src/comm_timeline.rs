@@ -120,7 +120,7 @@ impl CommTimeline<'_> {
         let name = |v: &f64| {
             let k = v.round();
             if (v - k).abs() < 1e-6 && k >= 0.0 && (k as usize) < n {
-                format!("UAV {}", n - k as usize)
+                format!("UAV {}", n - 1 - k as usize)
             } else {
                 String::new()
             }
@@ -269,7 +269,7 @@ impl CommTimeline<'_> {
         for i in 0..self.trace.uav_count() {
             e.push(Entry::Note(format!(
                 "UAV {}: {} s / {} s",
-                i + 1,
+                i,
                 format_value(self.trace.seconds(i, Contact::Relayed)),
                 format_value(self.trace.seconds(i, Contact::Out)),
             )));

@@ -103,14 +103,7 @@ impl Figure for ConvergenceRun<'_> {
             .per_uav
             .iter()
             .enumerate()
-            .map(|(i, v)| {
-                (
-                    format!("UAV {}", i + 1),
-                    style::uav_colour(i),
-                    s.px(2.0),
-                    &v[..],
-                )
-            })
+            .map(|(i, v)| (format!("UAV {i}"), style::uav_colour(i), s.px(2.0), &v[..]))
             .collect();
         if !self.trace.is_empty() {
             series.push(("total".to_string(), BLACK, s.px(3.0), self.trace));

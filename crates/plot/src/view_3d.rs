@@ -125,7 +125,7 @@ impl<'a> View3d<'a> {
 
     fn legend_entries(&self, s: Scale, exaggeration: f64) -> Vec<Entry> {
         let mut e: Vec<Entry> = (0..self.plan.uavs.len())
-            .map(|i| Entry::line(format!("UAV {}", i + 1), style::uav_colour(i), s.px(3.0)))
+            .map(|i| Entry::line(format!("UAV {i}"), style::uav_colour(i), s.px(3.0)))
             .collect();
         e.push(Entry::line(
             "path shadow on the ground",
