@@ -15,7 +15,7 @@ use swarmplan_experiment::record::RunRecord;
 use swarmplan_experiment::runner::{run_experiment, RunnerOptions};
 use swarmplan_experiment::summary::{csv, markdown, summarize_records, ExperimentSummary};
 
-use super::plan::{budget, load_params};
+use super::plan::{budget, load_params, SettingsArgs};
 
 #[derive(Debug, Args)]
 pub struct BenchArgs {
@@ -41,18 +41,9 @@ pub struct BenchArgs {
     /// Output folder.
     #[arg(long, default_value = "out/bench")]
     pub out: PathBuf,
-    /// Iterations per run (default 200).
-    #[arg(long)]
-    pub iterations: Option<usize>,
-    /// Population size (default 50).
-    #[arg(long)]
-    pub population: Option<usize>,
-    /// Evaluation budget per run.
-    #[arg(long)]
-    pub evaluations: Option<u64>,
-    /// Algorithm parameters (TOML, as for `plan`), used as the parameter set `custom`.
-    #[arg(long)]
-    pub params: Option<PathBuf>,
+    /// Budget and parameters (a --params file becomes the parameter set `custom`).
+    #[command(flatten)]
+    pub settings: SettingsArgs,
     /// GeoTIFF or ESRI ASCII grid replacing every scenario's terrain.
     #[arg(long)]
     pub terrain: Option<PathBuf>,
@@ -96,12 +87,13 @@ fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
     if let Some(s) = args.seed {
         spec.master_seed = s;
     }
-    if args.iterations.is_some() || args.evaluations.is_some() {
-        spec.budget = budget(args.iterations, args.evaluations)?;
+    let st = &args.settings;
+    if st.iterations.is_some() || st.evaluations.is_some() {
+        spec.budget = budget(st.iterations, st.evaluations)?;
     }
-    if args.params.is_some() || args.population.is_some() {
-        let params = load_params(args.params.as_ref(), args.population)?;
-        let name = if args.params.is_some() {
+    if st.params.is_some() || st.population.is_some() {
+        let params = load_params(st.params.as_ref(), st.population)?;
+        let name = if st.params.is_some() {
             "custom"
         } else {
             "paper"

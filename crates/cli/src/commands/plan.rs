@@ -28,18 +28,8 @@ pub struct PlanArgs {
     /// Seed of the run (default: the scenario's `planning.seed`).
     #[arg(long)]
     pub seed: Option<u64>,
-    /// Iterations (default 200, the paper's; ignored when only --evaluations is given).
-    #[arg(long)]
-    pub iterations: Option<usize>,
-    /// Population size (default 50, the paper's).
-    #[arg(long)]
-    pub population: Option<usize>,
-    /// Evaluation budget (fair comparisons); with --iterations, whichever ends first.
-    #[arg(long)]
-    pub evaluations: Option<u64>,
-    /// Algorithm parameters as TOML (sections pso, apso, spso, dls_smpso, qpso, gwo, abc).
-    #[arg(long)]
-    pub params: Option<PathBuf>,
+    #[command(flatten)]
+    pub settings: SettingsArgs,
     /// Output folder for plan.json and convergence.csv.
     #[arg(long, default_value = "out")]
     pub out: PathBuf,
@@ -55,6 +45,23 @@ pub struct PlanArgs {
     /// Geodetic origin LAT,LON[,ALT] for --export (overrides [geo] origin and the DEM's CRS).
     #[arg(long, allow_hyphen_values = true, requires = "export")]
     pub origin: Option<String>,
+}
+
+/// Budget and algorithm settings, shared by `plan` and `bench`.
+#[derive(Debug, Clone, Args)]
+pub struct SettingsArgs {
+    /// Iterations per run (default 200, the paper's; ignored when only --evaluations is given).
+    #[arg(long)]
+    pub iterations: Option<usize>,
+    /// Population size (default 50, the paper's).
+    #[arg(long)]
+    pub population: Option<usize>,
+    /// Evaluation budget per run (fair comparisons); with --iterations, whichever ends first.
+    #[arg(long)]
+    pub evaluations: Option<u64>,
+    /// Algorithm parameters as TOML (sections pso, apso, spso, dls_smpso, qpso, gwo, abc).
+    #[arg(long)]
+    pub params: Option<PathBuf>,
 }
 
 /// Algorithm parameters from a TOML file, then the population flag.
@@ -100,12 +107,12 @@ pub fn budget(iterations: Option<usize>, evaluations: Option<u64>) -> Result<Bud
 
 pub fn run_command(args: &PlanArgs) -> Result<()> {
     let world = super::load_world(&args.scenario)?;
-    let params = load_params(args.params.as_ref(), args.population)?;
+    let params = load_params(args.settings.params.as_ref(), args.settings.population)?;
     let req = RunRequest {
         algorithm: args.algorithm,
         encoding: args.encoding,
         params,
-        budget: budget(args.iterations, args.evaluations)?,
+        budget: budget(args.settings.iterations, args.settings.evaluations)?,
         seed: args.seed.unwrap_or(world.spec.planning.seed),
     };
     if !args.json {
