@@ -1,0 +1,32 @@
+//! The defaults make cooperation matter (calibration in docs/model.md): in both paper cases
+//! the straight start-to-goal plan is infeasible because of threats, and, since it ignores
+//! communication, it also loses contact (the interference windows sit on the direct route).
+
+#![allow(clippy::unwrap_used)] // tests fail loudly by design
+
+use swarmplan_core::feasibility::{check, ViolationKind};
+use swarmplan_core::plan::Plan;
+use swarmplan_io::scenario::{build_world, load_spec};
+
+#[test]
+fn the_straight_plan_hits_threats_and_loses_contact_in_both_cases() {
+    for case in ["paper-case1", "paper-case2"] {
+        let world = build_world(&load_spec(case).unwrap(), None).unwrap();
+        let starts: Vec<_> = (0..world.uav_count()).map(|i| world.start(i)).collect();
+        let plan = Plan::straight(&starts, world.goal, world.spec.planning.waypoints);
+        let v = check(&world, &plan);
+        for kind in [ViolationKind::Threat, ViolationKind::Comm] {
+            assert!(
+                v.iter().any(|x| x.kind == kind),
+                "{case}: no {kind:?} violation in {v:?}"
+            );
+        }
+        // Every UAV of the fleet is out of contact too long, not just one.
+        let out: std::collections::BTreeSet<usize> = v
+            .iter()
+            .filter(|x| x.kind == ViolationKind::Comm)
+            .map(|x| x.uav)
+            .collect();
+        assert_eq!(out.len(), world.uav_count(), "{case}");
+    }
+}
