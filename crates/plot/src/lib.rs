@@ -39,5 +39,6 @@ pub use comm_timeline::comm_timeline;
 pub use convergence_bench::convergence_bench;
 pub use convergence_run::convergence_run;
 pub use render::{PlotError, Target, Written};
+pub use style::uav_colour_hex;
 pub use top_view::top_view;
 pub use view_3d::view_3d;

@@ -100,6 +100,13 @@ pub(crate) fn uav_colour(i: usize) -> RGBColor {
     UAV_COLOURS[i % UAV_COLOURS.len()]
 }
 
+/// Colour of UAV `i` as CSS hex (`#rrggbb`), for pages that show the same fleet.
+#[must_use]
+pub fn uav_colour_hex(i: usize) -> String {
+    let RGBColor(r, g, b) = uav_colour(i);
+    format!("#{r:02x}{g:02x}{b:02x}")
+}
+
 /// Colour of the `i`-th series of a comparison (algorithms).
 pub(crate) fn series_colour(i: usize) -> RGBColor {
     const C: [RGBColor; 8] = [

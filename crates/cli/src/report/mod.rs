@@ -15,12 +15,6 @@ use swarmplan_core::world::World;
 const VIEWER_JS: &str = include_str!("viewer.js");
 const STYLE_CSS: &str = include_str!("style.css");
 
-/// Distinct colours for UAV paths (colour-blind-safe first, then more).
-pub const PALETTE: [&str; 10] = [
-    "#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#F0E442", "#000000",
-    "#8B4513", "#7F7F7F",
-];
-
 /// Escapes text for HTML.
 #[must_use]
 pub fn escape(s: &str) -> String {
@@ -63,7 +57,7 @@ pub fn scene(world: &World, plan: &Plan) -> serde_json::Value {
         .map(|(i, p)| {
             json!({
                 "name": format!("UAV {i}"),
-                "color": PALETTE[i % PALETTE.len()],
+                "color": swarmplan_plot::uav_colour_hex(i),
                 "points": p.abs.iter().map(|a| [a.x, a.y, a.z]).collect::<Vec<_>>(),
             })
         })
