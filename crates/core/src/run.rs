@@ -2,6 +2,7 @@
 //! plan. The CLI's `plan` and the experiment runner both go through here, so a run is the
 //! same thing wherever it happens.
 
+use std::sync::Mutex;
 use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
@@ -11,6 +12,7 @@ use crate::encoding::EncodingKind;
 use crate::optim::{build, solve, Algorithm, AlgorithmParams, Budget, IterationRecord, Outcome};
 use crate::plan::Plan;
 use crate::planning::PlanningProblem;
+use crate::problem::{Bound, Evaluation, Problem};
 use crate::rng::rng_from_seed;
 use crate::world::World;
 
@@ -85,4 +87,86 @@ pub fn run(
         assessment,
         seconds,
     }
+}
+
+/// A problem that remembers the best point evaluated so far (every optimizer's best is the
+/// best it evaluated), so an observer can look at it between iterations.
+struct BestTracker<'a> {
+    inner: &'a dyn Problem,
+    best: Mutex<(Evaluation, Vec<f64>)>,
+}
+
+impl Problem for BestTracker<'_> {
+    fn bounds(&self) -> &[Bound] {
+        self.inner.bounds()
+    }
+
+    fn evaluate(&self, x: &[f64]) -> Evaluation {
+        let e = self.inner.evaluate(x);
+        let mut best = self
+            .best
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        if best.1.is_empty() || e.better_than(&best.0) {
+            best.0 = e;
+            best.1.clear();
+            best.1.extend_from_slice(x);
+        }
+        e
+    }
+}
+
+/// [`run`], also recording after initialisation and every iteration each UAV's cost (its
+/// weighted terms, without the penalty) in the best plan so far: `trace[k][i]` for
+/// iteration k and UAV i. The optimizer sees exactly the same evaluations; the extra
+/// assessments are left out of `seconds`.
+#[must_use]
+pub fn run_with_uav_trace(world: &World, req: &RunRequest) -> (RunResult, Vec<Vec<f64>>) {
+    let encoding = req
+        .encoding
+        .unwrap_or_else(|| default_encoding(req.algorithm));
+    let problem = PlanningProblem::new(world, encoding);
+    let tracker = BestTracker {
+        inner: &problem,
+        best: Mutex::new((Evaluation::worst(), Vec::new())),
+    };
+    let mut optimizer = build(req.algorithm, &req.params);
+    let mut rng = rng_from_seed(req.seed);
+    let mut trace = Vec::new();
+    let mut observing = std::time::Duration::ZERO;
+    let mut observer = |_: &IterationRecord| {
+        let t0 = Instant::now();
+        let x = tracker
+            .best
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .1
+            .clone();
+        if !x.is_empty() {
+            let a = crate::cost::assess(world, &problem.decode(&x), false);
+            trace.push(a.per_uav.iter().map(|u| u.cost).collect());
+        }
+        observing += t0.elapsed();
+    };
+    let start = Instant::now();
+    let outcome = solve(
+        &tracker,
+        optimizer.as_mut(),
+        req.budget,
+        &mut rng,
+        &mut observer,
+    );
+    let seconds = (start.elapsed() - observing).as_secs_f64();
+    let plan = problem.decode(&outcome.best_x);
+    let assessment = crate::cost::assess(world, &plan, true);
+    let result = RunResult {
+        algorithm: req.algorithm,
+        encoding,
+        seed: req.seed,
+        outcome,
+        plan,
+        assessment,
+        seconds,
+    };
+    (result, trace)
 }

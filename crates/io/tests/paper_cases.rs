@@ -30,3 +30,30 @@ fn the_straight_plan_hits_threats_and_loses_contact_in_both_cases() {
         assert_eq!(out.len(), world.uav_count(), "{case}");
     }
 }
+
+#[test]
+fn tracing_per_uav_costs_does_not_change_the_run() {
+    use swarmplan_core::optim::{Algorithm, AlgorithmParams, Budget};
+    use swarmplan_core::run::{run, run_with_uav_trace, RunRequest};
+    let world = build_world(&load_spec("tiny").unwrap(), None).unwrap();
+    let req = RunRequest {
+        algorithm: Algorithm::DlsSmpso,
+        encoding: None,
+        params: AlgorithmParams::default(),
+        budget: Budget::iterations(15),
+        seed: 11,
+    };
+    let plain = run(&world, &req, &mut |_| {});
+    let (traced, trace) = run_with_uav_trace(&world, &req);
+    assert_eq!(plain.outcome.best_x, traced.outcome.best_x);
+    assert_eq!(plain.outcome.evaluations, traced.outcome.evaluations);
+    assert_eq!(trace.len(), traced.outcome.trace.len());
+    let last = trace.last().unwrap();
+    for (c, u) in last.iter().zip(&traced.assessment.per_uav) {
+        assert!(
+            (c - u.cost).abs() <= 1e-9 * u.cost.abs().max(1.0),
+            "{c} vs {}",
+            u.cost
+        );
+    }
+}

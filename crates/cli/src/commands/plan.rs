@@ -7,8 +7,8 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use clap::Args;
 use swarmplan_core::encoding::EncodingKind;
-use swarmplan_core::optim::{Algorithm, AlgorithmParams, Budget, IterationRecord};
-use swarmplan_core::run::{run, RunRequest};
+use swarmplan_core::optim::{Algorithm, AlgorithmParams, Budget};
+use swarmplan_core::run::{run_with_uav_trace, RunRequest};
 use swarmplan_io::plan_file::{assessment_json, json_number, plan_file};
 use swarmplan_io::scenario::to_toml;
 
@@ -105,6 +105,14 @@ pub fn budget(iterations: Option<usize>, evaluations: Option<u64>) -> Result<Bud
     })
 }
 
+/// `trace[k][i]` (iteration, UAV) as one series per UAV.
+fn uav_series(trace: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    let n = trace.first().map_or(0, Vec::len);
+    (0..n)
+        .map(|i| trace.iter().map(|row| row[i]).collect())
+        .collect()
+}
+
 pub fn run_command(args: &PlanArgs) -> Result<()> {
     let world = super::load_world(&args.scenario)?;
     let params = load_params(args.settings.params.as_ref(), args.settings.population)?;
@@ -127,8 +135,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             req.params.population(req.algorithm)
         );
     }
-    let mut observer = |_: &IterationRecord| {};
-    let result = run(&world, &req, &mut observer);
+    let (result, uav_trace) = run_with_uav_trace(&world, &req);
 
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("{}: cannot create", args.out.display()))?;
@@ -141,19 +148,24 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         std::fs::File::create(&conv_path)
             .with_context(|| format!("{}: cannot write", conv_path.display()))?,
     );
+    let n = world.uav_count();
+    let uav_columns: String = (0..n).map(|i| format!(",uav{i}_cost")).collect();
     writeln!(
         csv,
-        "iteration,evaluations,best_cost,best_cost_per_uav,best_violation"
+        "iteration,evaluations,best_cost,best_cost_per_uav,best_violation{uav_columns}"
     )?;
-    let n = world.uav_count() as f64;
-    for r in &result.outcome.trace {
+    for (k, r) in result.outcome.trace.iter().enumerate() {
+        let per_uav: String = uav_trace
+            .get(k)
+            .map(|v| v.iter().map(|c| format!(",{c}")).collect())
+            .unwrap_or_default();
         writeln!(
             csv,
-            "{},{},{},{},{}",
+            "{},{},{},{},{}{per_uav}",
             r.iteration,
             r.evaluations,
             r.best_cost,
-            r.best_cost / n,
+            r.best_cost / n as f64,
             r.best_violation
         )?;
     }
@@ -209,7 +221,14 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     let figures = if args.no_figures {
         Vec::new()
     } else {
-        super::plot::plan_figures(&args.out, &world, &result.plan, &trace, &title)?
+        super::plot::plan_figures(
+            &args.out,
+            &world,
+            &result.plan,
+            &trace,
+            &uav_series(&uav_trace),
+            &title,
+        )?
     };
     if args.json {
         println!("{}", serde_json::to_string_pretty(&obj)?);

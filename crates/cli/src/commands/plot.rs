@@ -26,12 +26,14 @@ pub fn plan_figures(
     world: &World,
     plan: &Plan,
     trace: &[f64],
+    per_uav: &[Vec<f64>],
     title: &str,
 ) -> Result<Vec<PathBuf>> {
     let stem = |name: &str| dir.join(name);
     swarmplan_plot::top_view(world, plan, title, stem("top_view"))?;
     swarmplan_plot::view_3d(world, plan, title, stem("view_3d"))?;
-    swarmplan_plot::convergence_run(trace, None, title, stem("convergence"))?;
+    let per_uav = (!per_uav.is_empty()).then_some(per_uav);
+    swarmplan_plot::convergence_run(trace, per_uav, title, stem("convergence"))?;
     swarmplan_plot::comm_timeline(world, plan, title, stem("comm_timeline"))?;
     Ok(["top_view", "view_3d", "convergence", "comm_timeline"]
         .iter()
@@ -66,31 +68,43 @@ pub fn bench_figures(dir: &Path, records: &[RunRecord]) -> Result<Vec<PathBuf>> 
     Ok(out)
 }
 
-/// Reads `convergence.csv` (best_cost column) of a plan folder.
-fn read_trace(path: &Path) -> Result<Vec<f64>> {
+/// Reads `convergence.csv` of a plan folder: the best_cost column and, when present, one
+/// `uavI_cost` column per UAV (as series).
+fn read_trace(path: &Path) -> Result<(Vec<f64>, Vec<Vec<f64>>)> {
     let text = std::fs::read_to_string(path)
         .with_context(|| format!("{}: cannot read", path.display()))?;
     let mut lines = text.lines();
-    let header = lines.next().unwrap_or_default();
+    let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
     let col = header
-        .split(',')
-        .position(|h| h == "best_cost")
+        .iter()
+        .position(|h| *h == "best_cost")
         .with_context(|| format!("{}: no best_cost column in the header", path.display()))?;
-    lines
-        .enumerate()
-        .map(|(i, l)| {
-            l.split(',')
-                .nth(col)
+    let uav_cols: Vec<usize> = (0..header.len())
+        .filter(|c| header[*c].starts_with("uav") && header[*c].ends_with("_cost"))
+        .collect();
+    let mut total = Vec::new();
+    let mut per_uav = vec![Vec::new(); uav_cols.len()];
+    for (i, l) in lines.enumerate() {
+        let fields: Vec<&str> = l.split(',').collect();
+        let num = |c: usize| {
+            fields
+                .get(c)
                 .and_then(|v| v.parse::<f64>().ok())
                 .with_context(|| {
                     format!(
-                        "{}: line {}: expected a number in column best_cost",
+                        "{}: line {}: expected a number in column {}",
                         path.display(),
-                        i + 2
+                        i + 2,
+                        header[c]
                     )
                 })
-        })
-        .collect()
+        };
+        total.push(num(col)?);
+        for (series, c) in per_uav.iter_mut().zip(&uav_cols) {
+            series.push(num(*c)?);
+        }
+    }
+    Ok((total, per_uav))
 }
 
 pub fn run(args: &PlotArgs) -> Result<()> {
@@ -105,7 +119,7 @@ pub fn run(args: &PlotArgs) -> Result<()> {
         );
         let world = build_world(&load_spec(&scenario.display().to_string())?, None)?;
         let plan = read_plan(&dir.join("plan.json"), &world)?;
-        let trace = read_trace(&dir.join("convergence.csv"))?;
+        let (trace, per_uav) = read_trace(&dir.join("convergence.csv"))?;
         let title = match std::fs::read_to_string(dir.join("run.json")) {
             Ok(t) => {
                 let v: serde_json::Value = serde_json::from_str(&t).unwrap_or_default();
@@ -118,7 +132,7 @@ pub fn run(args: &PlotArgs) -> Result<()> {
             }
             Err(_) => world.spec.name.clone(),
         };
-        plan_figures(dir, &world, &plan, &trace, &title)?
+        plan_figures(dir, &world, &plan, &trace, &per_uav, &title)?
     } else if dir.join("runs.jsonl").exists() {
         let records = read_records(dir, false)?;
         anyhow::ensure!(
