@@ -354,7 +354,7 @@ mod tests {
         );
         assert!(out.best.cost.is_finite());
         // Each of the (several) draws is counted in full.
-        assert!(out.evaluations > 5 && out.evaluations % 5 == 0);
+        assert!(out.evaluations > 5 && out.evaluations.is_multiple_of(5));
 
         let mut no_redraw = Pso::new(PsoParams {
             initial_redraws: 0,
