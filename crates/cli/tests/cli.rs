@@ -4,12 +4,11 @@
 
 #![allow(clippy::unwrap_used)] // tests fail loudly by design
 
-use assert_cmd::Command;
-use predicates::prelude::*;
+mod common;
 
-fn swarmplan() -> Command {
-    Command::cargo_bin("swarmplan").unwrap()
-}
+use common::swarmplan;
+
+use predicates::prelude::*;
 
 fn json(out: &[u8]) -> serde_json::Value {
     serde_json::from_slice(out).unwrap()

@@ -3,32 +3,13 @@
 
 #![allow(clippy::unwrap_used)] // tests fail loudly by design
 
-use std::path::{Path, PathBuf};
+mod common;
 
-use assert_cmd::Command;
+use common::{plan_folder, swarmplan};
+
+use std::path::PathBuf;
+
 use predicates::prelude::*;
-
-fn swarmplan() -> Command {
-    Command::cargo_bin("swarmplan").unwrap()
-}
-
-fn plan_folder(dir: &Path, extra: &[&str]) {
-    swarmplan()
-        .args([
-            "plan",
-            "--scenario",
-            "tiny",
-            "--iterations",
-            "10",
-            "--population",
-            "10",
-            "--out",
-        ])
-        .arg(dir)
-        .args(extra)
-        .assert()
-        .success();
-}
 
 #[test]
 fn plan_writes_figures_and_plot_redraws_them() {

@@ -6,9 +6,12 @@
 
 #![allow(clippy::unwrap_used)] // tests fail loudly by design
 
+mod common;
+
+use common::{plan_folder, swarmplan};
+
 use std::path::Path;
 
-use assert_cmd::Command;
 use predicates::prelude::*;
 
 fn chromium() -> Option<&'static str> {
@@ -21,34 +24,11 @@ fn chromium() -> Option<&'static str> {
     .find(|p| Path::new(p).exists())
 }
 
-fn plan_folder(dir: &Path) {
-    Command::cargo_bin("swarmplan")
-        .unwrap()
-        .args([
-            "plan",
-            "--scenario",
-            "tiny",
-            "--iterations",
-            "10",
-            "--population",
-            "10",
-            "--out",
-        ])
-        .arg(dir)
-        .assert()
-        .success();
-}
-
 #[test]
 fn report_is_self_contained_and_names_what_it_shows() {
     let dir = tempfile::tempdir().unwrap();
-    plan_folder(dir.path());
-    Command::cargo_bin("swarmplan")
-        .unwrap()
-        .arg("report")
-        .arg(dir.path())
-        .assert()
-        .success();
+    plan_folder(dir.path(), &[]);
+    swarmplan().arg("report").arg(dir.path()).assert().success();
     let html = std::fs::read_to_string(dir.path().join("report.html")).unwrap();
     for needle in [
         "<canvas id=\"view3d\"",
@@ -77,8 +57,7 @@ fn report_is_self_contained_and_names_what_it_shows() {
 #[test]
 fn report_without_inputs_is_a_clear_error() {
     let dir = tempfile::tempdir().unwrap();
-    Command::cargo_bin("swarmplan")
-        .unwrap()
+    swarmplan()
         .arg("report")
         .arg(dir.path())
         .assert()
@@ -97,13 +76,8 @@ fn headless_chromium_draws_the_3d_view_offline() {
         return;
     };
     let dir = tempfile::tempdir().unwrap();
-    plan_folder(dir.path());
-    Command::cargo_bin("swarmplan")
-        .unwrap()
-        .arg("report")
-        .arg(dir.path())
-        .assert()
-        .success();
+    plan_folder(dir.path(), &[]);
+    swarmplan().arg("report").arg(dir.path()).assert().success();
     let profile = dir.path().join("profile");
     let url = format!("file://{}", dir.path().join("report.html").display());
     let out = std::process::Command::new(browser)

@@ -67,20 +67,41 @@ pub fn run(
     req: &RunRequest,
     observer: &mut dyn FnMut(&IterationRecord),
 ) -> RunResult {
-    let encoding = req
-        .encoding
-        .unwrap_or_else(|| default_encoding(req.algorithm));
-    let problem = PlanningProblem::new(world, encoding);
+    let problem = PlanningProblem::new(world, encoding_of(req));
+    let start = Instant::now();
+    let outcome = search(&problem, req, observer);
+    finish(world, req, &problem, outcome, start.elapsed().as_secs_f64())
+}
+
+fn encoding_of(req: &RunRequest) -> EncodingKind {
+    req.encoding
+        .unwrap_or_else(|| default_encoding(req.algorithm))
+}
+
+/// The optimisation itself, on `searched` (the planning problem or a wrapper of it).
+fn search(
+    searched: &dyn Problem,
+    req: &RunRequest,
+    observer: &mut dyn FnMut(&IterationRecord),
+) -> Outcome {
     let mut optimizer = build(req.algorithm, &req.params);
     let mut rng = rng_from_seed(req.seed);
-    let start = Instant::now();
-    let outcome = solve(&problem, optimizer.as_mut(), req.budget, &mut rng, observer);
-    let seconds = start.elapsed().as_secs_f64();
+    solve(searched, optimizer.as_mut(), req.budget, &mut rng, observer)
+}
+
+/// Decodes and fully assesses the best point of `outcome`.
+fn finish(
+    world: &World,
+    req: &RunRequest,
+    problem: &PlanningProblem,
+    outcome: Outcome,
+    seconds: f64,
+) -> RunResult {
     let plan = problem.decode(&outcome.best_x);
     let assessment = crate::cost::assess(world, &plan, true);
     RunResult {
         algorithm: req.algorithm,
-        encoding,
+        encoding: problem.encoding(),
         seed: req.seed,
         outcome,
         plan,
@@ -122,16 +143,11 @@ impl Problem for BestTracker<'_> {
 /// assessments are left out of `seconds`.
 #[must_use]
 pub fn run_with_uav_trace(world: &World, req: &RunRequest) -> (RunResult, Vec<Vec<f64>>) {
-    let encoding = req
-        .encoding
-        .unwrap_or_else(|| default_encoding(req.algorithm));
-    let problem = PlanningProblem::new(world, encoding);
+    let problem = PlanningProblem::new(world, encoding_of(req));
     let tracker = BestTracker {
         inner: &problem,
         best: Mutex::new((Evaluation::worst(), Vec::new())),
     };
-    let mut optimizer = build(req.algorithm, &req.params);
-    let mut rng = rng_from_seed(req.seed);
     let mut trace = Vec::new();
     let mut observing = std::time::Duration::ZERO;
     let mut observer = |_: &IterationRecord| {
@@ -149,24 +165,7 @@ pub fn run_with_uav_trace(world: &World, req: &RunRequest) -> (RunResult, Vec<Ve
         observing += t0.elapsed();
     };
     let start = Instant::now();
-    let outcome = solve(
-        &tracker,
-        optimizer.as_mut(),
-        req.budget,
-        &mut rng,
-        &mut observer,
-    );
+    let outcome = search(&tracker, req, &mut observer);
     let seconds = (start.elapsed() - observing).as_secs_f64();
-    let plan = problem.decode(&outcome.best_x);
-    let assessment = crate::cost::assess(world, &plan, true);
-    let result = RunResult {
-        algorithm: req.algorithm,
-        encoding,
-        seed: req.seed,
-        outcome,
-        plan,
-        assessment,
-        seconds,
-    };
-    (result, trace)
+    (finish(world, req, &problem, outcome, seconds), trace)
 }
