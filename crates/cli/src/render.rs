@@ -2,7 +2,7 @@
 
 use std::fmt::Write;
 
-use swarmplan_core::cost::{Assessment, Terms};
+use swarmplan_core::cost::Assessment;
 use swarmplan_core::world::World;
 
 /// Per-UAV table, term breakdown, feasibility and violations.
@@ -40,8 +40,8 @@ pub fn assessment(world: &World, a: &Assessment) -> String {
     }
     let _ = writeln!(s, "\ncost breakdown (weighted, all UAVs):");
     let t = a.term_totals();
-    for (name, v) in Terms::NAMES.iter().zip(t.values()) {
-        let _ = writeln!(s, "  {name:<14} {v:>12.2}");
+    for (term, v) in t.iter() {
+        let _ = writeln!(s, "  {:<14} {v:>12.2}", term.name());
     }
     let _ = writeln!(s, "  {:<14} {:>12.2}", "penalty", a.penalty);
     let _ = writeln!(s, "  {:<14} {:>12.2}", "total", a.total);

@@ -49,7 +49,7 @@ fn keys(records: &[serde_json::Value]) -> Vec<String> {
         .map(|r| {
             format!(
                 "{}/{}/{}#{}",
-                r["scenario"], r["param_set"], r["algorithm"], r["run"]
+                r["scenario"], r["param_set"], r["method"], r["run"]
             )
         })
         .collect();
@@ -70,7 +70,7 @@ fn summary_is_identical_on_one_and_two_threads() {
     assert_eq!(summary["records"], 18);
     let md = std::fs::read_to_string(a.join("summary.md")).unwrap();
     assert!(
-        md.contains("| Algorithm | Worst | Optimal | Mean | FR(%) |"),
+        md.contains("| Method | Worst | Optimal | Mean | FR(%) |"),
         "{md}"
     );
     assert!(md.contains("Friedman") && md.contains("Fisher"), "{md}");
@@ -87,6 +87,110 @@ fn summary_is_identical_on_one_and_two_threads() {
     assert!(recs.iter().all(|r| r["seed"].is_u64()
         && r["master_seed"] == 9
         && r["convergence"].as_array().unwrap().len() == 11));
+}
+
+#[test]
+fn one_optimizer_on_two_encodings_is_two_labelled_methods() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("enc");
+    Command::cargo_bin("swarmplan")
+        .unwrap()
+        .args([
+            "bench",
+            "--scenarios",
+            "tiny",
+            "--methods",
+            "spso,pso-uniform,pso/spherical/line",
+        ])
+        .args([
+            "--runs",
+            "3",
+            "--iterations",
+            "5",
+            "--population",
+            "8",
+            "--out",
+        ])
+        .arg(&out)
+        .assert()
+        .success();
+    let recs = lines(&out.join("runs.jsonl"));
+    let parts = |label: &str| {
+        let r = recs.iter().find(|r| r["method"] == label).unwrap();
+        (
+            r["optimizer"].as_str().unwrap().to_string(),
+            r["encoding"].as_str().unwrap().to_string(),
+            r["init"].as_str().unwrap().to_string(),
+        )
+    };
+    assert_eq!(
+        parts("spso"),
+        ("pso".into(), "spherical".into(), "uniform".into())
+    );
+    assert_eq!(
+        parts("pso-uniform"),
+        ("pso".into(), "cartesian".into(), "uniform".into())
+    );
+    assert_eq!(
+        parts("pso/spherical/line"),
+        ("pso".into(), "spherical".into(), "line".into())
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let groups = summary["scenarios"][0]["groups"].as_array().unwrap();
+    let labelled: Vec<(String, String)> = groups
+        .iter()
+        .map(|g| {
+            (
+                g["method"].as_str().unwrap().to_string(),
+                g["encoding"].as_str().unwrap().to_string(),
+            )
+        })
+        .collect();
+    assert_eq!(labelled.len(), 3);
+    assert!(labelled.contains(&("spso".into(), "spherical".into())));
+    assert!(labelled.contains(&("pso-uniform".into(), "cartesian".into())));
+    let md = std::fs::read_to_string(out.join("summary.md")).unwrap();
+    assert!(md.contains("| spso | pso | spherical | uniform |"), "{md}");
+    assert!(
+        md.contains("| pso-uniform | pso | cartesian | uniform |"),
+        "{md}"
+    );
+}
+
+#[test]
+fn the_friedman_blocks_are_run_indices_with_one_seed_for_every_method() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fr");
+    bench(&out, &["--seed", "5"]).success();
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let sc = &summary["scenarios"][0];
+    let blocks: Vec<u64> = sc["friedman_blocks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|b| b.as_u64().unwrap())
+        .collect();
+    assert_eq!(blocks, (0..6).collect::<Vec<u64>>());
+    assert!(sc["friedman_note"]
+        .as_str()
+        .unwrap()
+        .contains("common random numbers"));
+    assert!(sc["friedman"]["p_value"].is_number() || sc["friedman"]["p_value"].is_string());
+    // What the summary says holds in the records: each block's runs share one seed.
+    let recs = lines(&out.join("runs.jsonl"));
+    for b in &blocks {
+        let seeds: Vec<u64> = recs
+            .iter()
+            .filter(|r| r["run"] == *b)
+            .map(|r| r["seed"].as_u64().unwrap())
+            .collect();
+        assert_eq!(seeds.len(), 3);
+        assert!(seeds.iter().all(|s| *s == seeds[0]), "block {b}: {seeds:?}");
+    }
+    let md = std::fs::read_to_string(out.join("summary.md")).unwrap();
+    assert!(md.contains("blocks: 6 run indices"), "{md}");
 }
 
 #[test]

@@ -68,18 +68,28 @@ fn plan_writes_files_that_evaluate_reads_back_with_the_same_cost() {
         .success();
     let planned = json(&out.get_output().stdout);
     for key in [
+        "version",
+        "scenario",
+        "terrain_fingerprint",
         "seed",
-        "algorithm",
-        "feasible",
-        "cost",
+        "method",
+        "optimizer",
+        "encoding",
+        "init",
+        "budget",
+        "report",
         "evaluations",
         "seconds",
-        "plan",
+        "files",
     ] {
         assert!(planned.get(key).is_some(), "missing {key}");
     }
     assert_eq!(planned["seed"], 7);
-    assert_eq!(planned["algorithm"], "dls-smpso");
+    assert_eq!(planned["method"], "dls-smpso");
+    assert_eq!(planned["optimizer"], "dls-paper");
+    // run.json is the same typed artifact.
+    let run_json = json(&std::fs::read(dir.path().join("run.json")).unwrap());
+    assert_eq!(run_json, planned);
     let plan_path = dir.path().join("plan.json");
     assert!(dir.path().join("convergence.csv").exists());
     let conv = std::fs::read_to_string(dir.path().join("convergence.csv")).unwrap();
@@ -92,13 +102,65 @@ fn plan_writes_files_that_evaluate_reads_back_with_the_same_cost() {
         .success();
     let evaluated = json(&out.get_output().stdout);
     let (a, b) = (
-        planned["cost"]["total"].as_f64().unwrap(),
+        planned["report"]["cost"]["total"].as_f64().unwrap(),
         evaluated["cost"]["total"].as_f64().unwrap(),
     );
     assert!((a - b).abs() <= 1e-9 * a.abs().max(1.0), "{a} vs {b}");
-    assert_eq!(planned["feasible"], evaluated["feasible"]);
+    assert_eq!(planned["report"]["feasible"], evaluated["feasible"]);
     assert!(evaluated["violations"].is_array());
     assert!(evaluated["cost"]["terms"]["length"].as_f64().unwrap() > 0.0);
+}
+
+#[test]
+fn evaluate_refuses_a_plan_made_for_other_terrain_or_another_scenario() {
+    let dir = tempfile::tempdir().unwrap();
+    swarmplan()
+        .args([
+            "plan",
+            "--scenario",
+            "tiny",
+            "--iterations",
+            "2",
+            "--population",
+            "6",
+        ])
+        .args(["--no-figures", "--out"])
+        .arg(dir.path())
+        .assert()
+        .success();
+    let plan_path = dir.path().join("plan.json");
+    let mut plan = json(&std::fs::read(&plan_path).unwrap());
+    assert_eq!(plan["scenario"], "tiny");
+    assert_eq!(plan["terrain_fingerprint"].as_str().unwrap().len(), 16);
+    plan["terrain_fingerprint"] = "0123456789abcdef".into();
+    let other = dir.path().join("other.json");
+    std::fs::write(&other, serde_json::to_string(&plan).unwrap()).unwrap();
+    swarmplan()
+        .args(["evaluate", "--scenario", "tiny", "--plan"])
+        .arg(&other)
+        .assert()
+        .code(2)
+        .stderr(
+            predicates::str::contains("terrain 0123456789abcdef")
+                .and(predicates::str::contains("--allow-other-terrain")),
+        );
+    swarmplan()
+        .args([
+            "evaluate",
+            "--scenario",
+            "tiny",
+            "--allow-other-terrain",
+            "--plan",
+        ])
+        .arg(&other)
+        .assert()
+        .success();
+    swarmplan()
+        .args(["evaluate", "--scenario", "paper-case1", "--plan"])
+        .arg(&plan_path)
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains("scenario `tiny`"));
 }
 
 #[test]

@@ -7,8 +7,6 @@ mod common;
 
 use common::{plan_folder, swarmplan};
 
-use std::path::PathBuf;
-
 use predicates::prelude::*;
 
 #[test]
@@ -72,12 +70,11 @@ fn export_needs_an_origin_and_writes_every_format_with_one() {
 
 #[test]
 fn scenario_new_from_a_real_dem() {
-    let tif = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/data/spso/ChrismasTerrain.tif");
-    if !tif.exists() {
-        eprintln!("skipped: {} not found", tif.display());
+    let Some(tif) =
+        swarmplan_io::reference_data::reference_file("spso/ChrismasTerrain.tif").unwrap()
+    else {
         return;
-    }
+    };
     let dir = tempfile::tempdir().unwrap();
     let toml_path = dir.path().join("island.toml");
     swarmplan()

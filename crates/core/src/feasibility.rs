@@ -72,6 +72,37 @@ impl ViolationKind {
             Self::Comm => "comm",
         }
     }
+
+    /// The amount that counts as one unit of violation, in the kind's unit. The violation
+    /// measure adds `1 + amount / scale` per violation, so metres, degrees, seconds, per cent
+    /// and kilograms are put on one footing before they are summed: any violation counts at
+    /// least 1, and a further unit is roughly "as hard to repair" across kinds: 10 m of
+    /// geometry (the terrain clearance and the separation distance are both 10 m), 5 deg of
+    /// turn or climb, 1 m/s of speed, 0.1 kg of payload, 5 % of the usable battery, 1 s of
+    /// contact beyond the tolerated outage.
+    #[must_use]
+    pub const fn scale(self) -> f64 {
+        match self {
+            Self::Threat | Self::Terrain | Self::Altitude | Self::Bounds | Self::Separation => 10.0,
+            Self::Turn | Self::Climb => 5.0,
+            Self::Speed | Self::Comm => 1.0,
+            Self::Payload => 0.1,
+            Self::Energy => 5.0,
+        }
+    }
+
+    /// Unit of the amount.
+    #[must_use]
+    pub const fn unit(self) -> &'static str {
+        match self {
+            Self::Threat | Self::Terrain | Self::Altitude | Self::Bounds | Self::Separation => "m",
+            Self::Turn | Self::Climb => "deg",
+            Self::Speed => "m/s",
+            Self::Payload => "kg",
+            Self::Energy => "%",
+            Self::Comm => "s",
+        }
+    }
 }
 
 /// One broken hard constraint.
@@ -100,7 +131,8 @@ pub struct Violation {
 /// Collects violations: always their scalar measure, the list only on request.
 #[derive(Debug, Default)]
 pub struct ViolationSink {
-    /// Sum over violations of (1 + amount): any violation counts at least 1.
+    /// Sum over violations of (1 + amount / scale of its kind): any violation counts at
+    /// least 1 ([`ViolationKind::scale`]).
     pub measure: f64,
     pub list: Option<Vec<Violation>>,
 }
@@ -142,7 +174,7 @@ impl ViolationSink {
         } else {
             1e9
         };
-        self.measure += 1.0 + amount;
+        self.measure += 1.0 + amount / kind.scale();
         if let Some(list) = &mut self.list {
             list.push(Violation {
                 kind,

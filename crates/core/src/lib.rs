@@ -8,11 +8,14 @@
 //! - [`cost`] and [`feasibility`]: how good a plan is and which hard limits it breaks;
 //! - [`encoding`]: how a flat `&[f64]` becomes a plan (spherical motion, cartesian, angle);
 //! - [`problem`]: the `Problem` trait optimizers see (bounds + evaluate);
-//! - [`optim`]: the optimizers and the solve loop.
+//! - [`optim`]: the optimizers and the solve loop;
+//! - [`method`]: a method = optimizer + encoding + initialisation, and the named presets.
 
 pub mod cost;
 pub mod encoding;
 pub mod feasibility;
+pub mod json_f64;
+pub mod method;
 pub mod optim;
 pub mod plan;
 pub mod planning;

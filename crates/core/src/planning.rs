@@ -8,17 +8,21 @@
 use std::cell::RefCell;
 
 use crate::cost::{assess, assess_into, Assessment, Scratch};
-use crate::encoding::{self, EncodingKind, PathEncoding};
+use crate::encoding::init::sample_line_plan;
+use crate::encoding::{self, EncodingKind, Frame, InitKind, PathEncoding};
 use crate::feasibility::ViolationSink;
 use crate::plan::Plan;
-use crate::problem::{Bound, Evaluation, Problem};
+use crate::problem::{fill_uniform, Bound, Evaluation, Problem};
+use crate::rng::Rng;
 use crate::world::World;
 
-/// A world with an encoding.
+/// A world with an encoding and an initialisation.
 pub struct PlanningProblem<'w> {
     world: &'w World,
     encoding: Box<dyn PathEncoding>,
     kind: EncodingKind,
+    init: InitKind,
+    frame: Frame,
 }
 
 thread_local! {
@@ -27,12 +31,27 @@ thread_local! {
 
 impl<'w> PlanningProblem<'w> {
     #[must_use]
-    pub fn new(world: &'w World, kind: EncodingKind) -> Self {
+    pub fn new(world: &'w World, kind: EncodingKind, init: InitKind) -> Self {
         Self {
             world,
             encoding: encoding::build(kind, world),
             kind,
+            init,
+            frame: Frame::of(world),
         }
+    }
+
+    #[must_use]
+    pub fn init(&self) -> InitKind {
+        self.init
+    }
+
+    /// The decision vector nearest to `plan` in this encoding.
+    #[must_use]
+    pub fn encode(&self, plan: &Plan) -> Vec<f64> {
+        let mut x = vec![0.0; self.encoding.bounds().len()];
+        self.encoding.encode_into(plan, &mut x);
+        x
     }
 
     #[must_use]
@@ -71,5 +90,16 @@ impl Problem for PlanningProblem<'_> {
             let (cost, violation) = assess_into(self.world, plan, scratch, &mut sink, false);
             Evaluation::new(cost, violation)
         })
+    }
+
+    fn sample_initial(&self, rng: &mut Rng, out: &mut [f64]) {
+        match self.init {
+            InitKind::Uniform => fill_uniform(self.encoding.bounds(), rng, out),
+            InitKind::Line => {
+                let mut plan = Plan::default();
+                sample_line_plan(&self.frame, rng, &mut plan);
+                self.encoding.encode_into(&plan, out);
+            }
+        }
     }
 }

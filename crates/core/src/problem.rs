@@ -3,7 +3,10 @@
 //! An optimizer sees only box bounds and a pure, infallible evaluation. Keeping this narrow
 //! lets any optimizer run on any encoding of any scenario, and on plain test functions.
 
+use rand::Rng as _;
 use serde::{Deserialize, Serialize};
+
+use crate::rng::Rng;
 
 /// Bounds of one decision variable. `periodic` marks an angle that wraps: optimizers may
 /// wrap it instead of clamping.
@@ -53,6 +56,19 @@ impl Bound {
     #[must_use]
     pub fn contains(&self, x: f64) -> bool {
         x >= self.lo && x <= self.hi
+    }
+
+    /// A uniform sample in `[lo, hi]`.
+    pub fn sample(&self, rng: &mut Rng) -> f64 {
+        let u: f64 = rng.random();
+        (self.lo + u * (self.hi - self.lo)).clamp(self.lo, self.hi)
+    }
+}
+
+/// Fills `out` with a uniform sample of the box `bounds`.
+pub fn fill_uniform(bounds: &[Bound], rng: &mut Rng, out: &mut [f64]) {
+    for (x, b) in out.iter_mut().zip(bounds) {
+        *x = b.sample(rng);
     }
 }
 
@@ -105,6 +121,14 @@ pub trait Problem: Sync {
 
     /// Pure and infallible: same `x`, same result; never touches a random generator.
     fn evaluate(&self, x: &[f64]) -> Evaluation;
+
+    /// Draws a starting point into `out` (one row of an initial population, or an ABC
+    /// scout). The default is uniform in the box; a problem that knows its structure (a
+    /// planning problem with a start-goal line) may draw elsewhere, but always inside the
+    /// bounds. Part of a method's definition, so optimizers never sample the box directly.
+    fn sample_initial(&self, rng: &mut Rng, out: &mut [f64]) {
+        fill_uniform(self.bounds(), rng, out);
+    }
 
     fn dimension(&self) -> usize {
         self.bounds().len()

@@ -8,40 +8,19 @@ use std::time::Instant;
 use serde::{Deserialize, Serialize};
 
 use crate::cost::Assessment;
-use crate::encoding::EncodingKind;
-use crate::optim::{build, solve, Algorithm, AlgorithmParams, Budget, IterationRecord, Outcome};
+use crate::method::Method;
+use crate::optim::{build, solve, Budget, IterationRecord, OptimizerParams, Outcome};
 use crate::plan::Plan;
 use crate::planning::PlanningProblem;
 use crate::problem::{Bound, Evaluation, Problem};
-use crate::rng::rng_from_seed;
+use crate::rng::{rng_from_seed, Rng};
 use crate::world::World;
-
-/// The encoding each algorithm uses by default: PSO on waypoint coordinates and APSO on
-/// phase angles, as their sources define them; SPSO and DLS-SMPSO on spherical motion
-/// vectors. The paper does not say what QPSO, GWO and ABC search over; its Tables 4-5 put
-/// them within 30 % of DLS-SMPSO's cost, which on this problem only the motion encoding
-/// comes near (on coordinates their best plans cost 30-80 times more, see
-/// docs/results.md), so they default to the spherical encoding too. `--encoding` overrides.
-#[must_use]
-pub fn default_encoding(alg: Algorithm) -> EncodingKind {
-    match alg {
-        Algorithm::Spso
-        | Algorithm::DlsSmpso
-        | Algorithm::Qpso
-        | Algorithm::Gwo
-        | Algorithm::Abc => EncodingKind::Spherical,
-        Algorithm::Apso => EncodingKind::Angle,
-        Algorithm::Pso => EncodingKind::Cartesian,
-    }
-}
 
 /// What to run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RunRequest {
-    pub algorithm: Algorithm,
-    /// `None`: the algorithm's paper pairing ([`default_encoding`]).
-    pub encoding: Option<EncodingKind>,
-    pub params: AlgorithmParams,
+    pub method: Method,
+    pub params: OptimizerParams,
     pub budget: Budget,
     pub seed: u64,
 }
@@ -49,8 +28,7 @@ pub struct RunRequest {
 /// What a run produced.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct RunResult {
-    pub algorithm: Algorithm,
-    pub encoding: EncodingKind,
+    pub method: Method,
     pub seed: u64,
     pub outcome: Outcome,
     pub plan: Plan,
@@ -67,15 +45,10 @@ pub fn run(
     req: &RunRequest,
     observer: &mut dyn FnMut(&IterationRecord),
 ) -> RunResult {
-    let problem = PlanningProblem::new(world, encoding_of(req));
+    let problem = PlanningProblem::new(world, req.method.encoding, req.method.init);
     let start = Instant::now();
     let outcome = search(&problem, req, observer);
     finish(world, req, &problem, outcome, start.elapsed().as_secs_f64())
-}
-
-fn encoding_of(req: &RunRequest) -> EncodingKind {
-    req.encoding
-        .unwrap_or_else(|| default_encoding(req.algorithm))
 }
 
 /// The optimisation itself, on `searched` (the planning problem or a wrapper of it).
@@ -84,7 +57,7 @@ fn search(
     req: &RunRequest,
     observer: &mut dyn FnMut(&IterationRecord),
 ) -> Outcome {
-    let mut optimizer = build(req.algorithm, &req.params);
+    let mut optimizer = build(req.method.optimizer, &req.params);
     let mut rng = rng_from_seed(req.seed);
     solve(searched, optimizer.as_mut(), req.budget, &mut rng, observer)
 }
@@ -100,8 +73,7 @@ fn finish(
     let plan = problem.decode(&outcome.best_x);
     let assessment = crate::cost::assess(world, &plan, true);
     RunResult {
-        algorithm: req.algorithm,
-        encoding: problem.encoding(),
+        method: req.method,
         seed: req.seed,
         outcome,
         plan,
@@ -135,6 +107,10 @@ impl Problem for BestTracker<'_> {
         }
         e
     }
+
+    fn sample_initial(&self, rng: &mut Rng, out: &mut [f64]) {
+        self.inner.sample_initial(rng, out);
+    }
 }
 
 /// [`run`], also recording after initialisation and every iteration each UAV's cost (its
@@ -143,7 +119,7 @@ impl Problem for BestTracker<'_> {
 /// assessments are left out of `seconds`.
 #[must_use]
 pub fn run_with_uav_trace(world: &World, req: &RunRequest) -> (RunResult, Vec<Vec<f64>>) {
-    let problem = PlanningProblem::new(world, encoding_of(req));
+    let problem = PlanningProblem::new(world, req.method.encoding, req.method.init);
     let tracker = BestTracker {
         inner: &problem,
         best: Mutex::new((Evaluation::worst(), Vec::new())),

@@ -6,6 +6,7 @@
 use glam::DVec3;
 use swarmplan_core::cost::assess;
 use swarmplan_core::cost::comm::{contact_at, Contact};
+use swarmplan_core::cost::TermId;
 use swarmplan_core::feasibility::{check, ViolationKind};
 use swarmplan_core::plan::{Path, Plan};
 use swarmplan_core::world::spec::*;
@@ -68,11 +69,11 @@ fn straight_path_length_is_the_distance() {
     let plan = Plan::straight(&[w.start(0)], w.goal, 5);
     let a = assess(&w, &plan, true);
     let want = (800.0f64 * 800.0 * 2.0).sqrt();
-    assert!((a.per_uav[0].raw.length - want).abs() < 1e-9);
+    assert!((a.per_uav[0].raw[TermId::Length] - want).abs() < 1e-9);
     assert!((a.per_uav[0].length_m - want).abs() < 1e-9);
     // A straight line turns nowhere and stays in the band: no smoothness, no turning.
-    assert_eq!(a.per_uav[0].raw.smoothness, 0.0);
-    assert_eq!(a.per_uav[0].raw.turning, 0.0);
+    assert_eq!(a.per_uav[0].raw[TermId::Smoothness], 0.0);
+    assert_eq!(a.per_uav[0].raw[TermId::Turning], 0.0);
     assert!(a.feasible(), "{:?}", a.violations);
 }
 
@@ -89,7 +90,7 @@ fn a_segment_clear_of_a_cylinder_costs_nothing_and_one_through_it_violates() {
     let w = World::new(s.clone(), flat()).unwrap();
     let plan = Plan::straight(&[w.start(0)], w.goal, 5);
     let a = assess(&w, &plan, true);
-    assert_eq!(a.per_uav[0].raw.threat, 0.0);
+    assert_eq!(a.per_uav[0].raw[TermId::Threat], 0.0);
     assert!(!kinds(&w, &plan).contains(&ViolationKind::Threat));
 
     // On the diagonal: a collision, reported with its place.
@@ -210,7 +211,7 @@ fn speeds_out_of_range_count_in_safety_and_violate() {
     let plan = Plan::straight(&[w.start(0)], w.goal, 3);
     let a = assess(&w, &plan, true);
     // 4 segments too fast + 1 payload indicator.
-    assert_eq!(a.per_uav[0].raw.safety, 5.0);
+    assert_eq!(a.per_uav[0].raw[TermId::Safety], 5.0);
     let k = kinds(&w, &plan);
     assert!(k.contains(&ViolationKind::Speed) && k.contains(&ViolationKind::Payload));
 }
@@ -327,6 +328,6 @@ fn flying_out_of_range_costs_and_violates_outage() {
     let a = assess(&w, &plan, true);
     // Out of both 300 m disks for the middle of the 800 m trip (about 200 m, 13 s at 15 m/s).
     assert!(a.per_uav[0].outage_s >= 10.0, "{}", a.per_uav[0].outage_s);
-    assert!(a.per_uav[0].raw.communication > 0.0);
+    assert!(a.per_uav[0].raw[TermId::Communication] > 0.0);
     assert!(kinds(&w, &plan).contains(&ViolationKind::Comm));
 }

@@ -1,13 +1,16 @@
-//! The experiment matrix: scenarios x parameter sets x algorithms x runs, in one fixed
-//! order, and each run's seed.
+//! The experiment matrix: scenarios x parameter sets x methods x runs, in one fixed order,
+//! and each run's seed.
 //!
-//! A run's seed is derived from the master seed and the run's identity (scenario, algorithm,
-//! parameter set, run index) alone, so it does not depend on thread count, execution order,
-//! sharding or resuming.
+//! A run's seed is derived from the master seed, the scenario, the parameter set and the
+//! run index alone, so it does not depend on thread count, execution order, sharding or
+//! resuming, and it is the *same for every method*: run k of every method on a scenario
+//! draws from the same random stream (common random numbers). Two methods with the same
+//! encoding and initialisation therefore start from the same population, and the run index
+//! is a real block for paired statistics (the summary's Friedman test).
 
 use serde::{Deserialize, Serialize};
-use swarmplan_core::encoding::EncodingKind;
-use swarmplan_core::optim::{Algorithm, AlgorithmParams, Budget};
+use swarmplan_core::method::Method;
+use swarmplan_core::optim::{Budget, OptimizerParams};
 use swarmplan_core::rng::derive_seed;
 use thiserror::Error;
 
@@ -16,19 +19,15 @@ use thiserror::Error;
 #[serde(deny_unknown_fields)]
 pub struct ParamSet {
     pub name: String,
-    /// Encoding for every algorithm of this set (default: each algorithm's pairing).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub encoding: Option<EncodingKind>,
     #[serde(default)]
-    pub params: AlgorithmParams,
+    pub params: OptimizerParams,
 }
 
 impl Default for ParamSet {
     fn default() -> Self {
         Self {
             name: "paper".into(),
-            encoding: None,
-            params: AlgorithmParams::default(),
+            params: OptimizerParams::default(),
         }
     }
 }
@@ -44,7 +43,8 @@ pub struct ExperimentSpec {
     pub runs: usize,
     /// Built-in scenario names or scenario files.
     pub scenarios: Vec<String>,
-    pub algorithms: Vec<Algorithm>,
+    /// Methods by label: presets (`spso`) or `optimizer/encoding/init`.
+    pub methods: Vec<Method>,
     #[serde(default = "default_param_sets")]
     pub param_sets: Vec<ParamSet>,
     #[serde(default)]
@@ -59,7 +59,7 @@ fn default_param_sets() -> Vec<ParamSet> {
 }
 
 impl ExperimentSpec {
-    /// The paper's experiment: both cases, the six algorithms of the paper plus SPSO (the
+    /// The paper's experiment: both cases, the six methods of the paper plus SPSO (the
     /// ablation of DLS), 200 runs each, paper settings.
     #[must_use]
     pub fn paper(master_seed: u64) -> Self {
@@ -67,15 +67,7 @@ impl ExperimentSpec {
             master_seed,
             runs: 200,
             scenarios: vec!["paper-case1".into(), "paper-case2".into()],
-            algorithms: vec![
-                Algorithm::Pso,
-                Algorithm::Apso,
-                Algorithm::Qpso,
-                Algorithm::Gwo,
-                Algorithm::Abc,
-                Algorithm::Spso,
-                Algorithm::DlsSmpso,
-            ],
+            methods: Method::paper_methods(),
             param_sets: default_param_sets(),
             budget: Budget::DEFAULT,
             terrain: None,
@@ -87,17 +79,25 @@ impl ExperimentSpec {
         if self.runs == 0 {
             return Err(MatrixError::Empty("runs must be at least 1".into()));
         }
-        if self.scenarios.is_empty() || self.algorithms.is_empty() || self.param_sets.is_empty() {
+        if self.scenarios.is_empty() || self.methods.is_empty() || self.param_sets.is_empty() {
             return Err(MatrixError::Empty(
-                "scenarios, algorithms and param_sets must each list at least one entry".into(),
+                "scenarios, methods and param_sets must each list at least one entry".into(),
             ));
         }
-        let mut names: Vec<&str> = self.param_sets.iter().map(|p| p.name.as_str()).collect();
-        names.sort_unstable();
-        if let Some(w) = names.windows(2).find(|w| w[0] == w[1]) {
+        // A repeated entry would run every run twice with the same seed and count it twice.
+        if let Some(d) = first_duplicate(self.scenarios.iter()) {
             return Err(MatrixError::Duplicate(format!(
-                "param_sets: name `{}` appears twice",
-                w[0]
+                "scenarios: `{d}` appears twice"
+            )));
+        }
+        if let Some(d) = first_duplicate(self.methods.iter()) {
+            return Err(MatrixError::Duplicate(format!(
+                "methods: `{d}` appears twice"
+            )));
+        }
+        if let Some(d) = first_duplicate(self.param_sets.iter().map(|p| &p.name)) {
+            return Err(MatrixError::Duplicate(format!(
+                "param_sets: name `{d}` appears twice"
             )));
         }
         for p in &self.param_sets {
@@ -111,7 +111,7 @@ impl ExperimentSpec {
     /// Number of runs in the matrix.
     #[must_use]
     pub fn size(&self) -> usize {
-        self.scenarios.len() * self.param_sets.len() * self.algorithms.len() * self.runs
+        self.scenarios.len() * self.param_sets.len() * self.methods.len() * self.runs
     }
 
     /// Every run, in the matrix's fixed order.
@@ -120,12 +120,12 @@ impl ExperimentSpec {
         let mut v = Vec::with_capacity(self.size());
         for scenario in &self.scenarios {
             for set in &self.param_sets {
-                for alg in &self.algorithms {
+                for method in &self.methods {
                     for run in 0..self.runs {
                         v.push(RunKey {
                             scenario: scenario.clone(),
                             param_set: set.name.clone(),
-                            algorithm: *alg,
+                            method: *method,
                             run,
                         });
                     }
@@ -135,12 +135,12 @@ impl ExperimentSpec {
         v
     }
 
-    /// The seed of a run.
+    /// The seed of a run: common to every method (see the module docs).
     #[must_use]
     pub fn seed(&self, key: &RunKey) -> u64 {
         derive_seed(
             self.master_seed,
-            &[&key.scenario, key.algorithm.name(), &key.param_set],
+            &[&key.scenario, &key.param_set],
             key.run as u64,
         )
     }
@@ -156,8 +156,20 @@ impl ExperimentSpec {
 pub struct RunKey {
     pub scenario: String,
     pub param_set: String,
-    pub algorithm: Algorithm,
+    pub method: Method,
     pub run: usize,
+}
+
+/// The first item that appears twice.
+fn first_duplicate<T: Ord + std::fmt::Display>(items: impl Iterator<Item = T>) -> Option<String> {
+    let mut seen = std::collections::BTreeSet::new();
+    for i in items {
+        let label = i.to_string();
+        if !seen.insert(i) {
+            return Some(label);
+        }
+    }
+    None
 }
 
 /// A slice of the matrix: runs whose position in the matrix order is `index - 1` modulo
@@ -213,11 +225,11 @@ mod tests {
         assert_eq!(runs[0].scenario, "paper-case1");
         assert_eq!(runs[0].run, 0);
         assert_eq!(runs[199].run, 199);
-        assert_eq!(runs[200].algorithm, Algorithm::Apso);
+        assert_eq!(runs[200].method.label(), "apso");
     }
 
     #[test]
-    fn seeds_depend_on_identity_only() {
+    fn seeds_depend_on_identity_only_and_are_common_to_methods() {
         let spec = ExperimentSpec::paper(7);
         let runs = spec.runs();
         let a = spec.seed(&runs[5]);
@@ -225,6 +237,26 @@ mod tests {
         assert_ne!(a, spec.seed(&runs[6]));
         let other = ExperimentSpec::paper(8);
         assert_ne!(a, other.seed(&runs[5]));
+        // Run 5 of the second method (APSO) has run 5 of the first's seed.
+        assert_ne!(runs[5].method, runs[205].method);
+        assert_eq!(runs[205].run, 5);
+        assert_eq!(spec.seed(&runs[205]), a);
+        // Another scenario has other seeds.
+        let case2 = runs
+            .iter()
+            .find(|k| k.scenario == "paper-case2" && k.run == 5);
+        assert_ne!(case2.map(|k| spec.seed(k)), Some(a));
+    }
+
+    #[test]
+    fn repeated_entries_are_refused() {
+        let mut spec = ExperimentSpec::paper(1);
+        spec.methods.push(spec.methods[0]);
+        let e = spec.validate().expect_err("duplicate method");
+        assert_eq!(e.to_string(), "experiment: methods: `pso` appears twice");
+        let mut spec = ExperimentSpec::paper(1);
+        spec.scenarios.push("paper-case1".into());
+        assert!(spec.validate().is_err());
     }
 
     #[test]

@@ -3,9 +3,9 @@
 use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
-use swarmplan_core::cost::Terms;
-use swarmplan_core::encoding::EncodingKind;
-use swarmplan_core::optim::{Algorithm, AlgorithmParams};
+use swarmplan_core::encoding::{EncodingKind, InitKind};
+use swarmplan_core::method::Method;
+use swarmplan_core::optim::{OptimizerKind, OptimizerParams};
 use swarmplan_core::run::RunResult;
 
 use crate::matrix::RunKey;
@@ -16,12 +16,16 @@ use crate::matrix::RunKey;
 pub struct RunRecord {
     pub scenario: String,
     pub param_set: String,
-    pub algorithm: Algorithm,
+    /// The method's label (a preset name, or `optimizer/encoding/init`).
+    pub method: Method,
+    /// The method's three parts, spelled out.
+    pub optimizer: OptimizerKind,
     pub encoding: EncodingKind,
+    pub init: InitKind,
     pub run: usize,
     pub master_seed: u64,
     pub seed: u64,
-    pub params: AlgorithmParams,
+    pub params: OptimizerParams,
     /// Total cost of the best plan (penalty included).
     #[serde(with = "finite_or_null")]
     pub cost_total: f64,
@@ -48,7 +52,7 @@ impl RunRecord {
         RunKey {
             scenario: self.scenario.clone(),
             param_set: self.param_set.clone(),
-            algorithm: self.algorithm,
+            method: self.method,
             run: self.run,
         }
     }
@@ -58,16 +62,15 @@ impl RunRecord {
     pub fn new(
         key: &RunKey,
         master_seed: u64,
-        params: AlgorithmParams,
+        params: OptimizerParams,
         result: &RunResult,
     ) -> Self {
         let a = &result.assessment;
         let n = a.per_uav.len().max(1) as f64;
         let t = a.term_totals();
-        let mut terms: BTreeMap<String, f64> = Terms::NAMES
+        let mut terms: BTreeMap<String, f64> = t
             .iter()
-            .zip(t.values())
-            .map(|(k, v)| ((*k).to_string(), finite(v)))
+            .map(|(k, v)| (k.name().to_string(), finite(v)))
             .collect();
         terms.insert("penalty".into(), finite(a.penalty));
         let mut violations = BTreeMap::new();
@@ -77,8 +80,10 @@ impl RunRecord {
         Self {
             scenario: key.scenario.clone(),
             param_set: key.param_set.clone(),
-            algorithm: key.algorithm,
-            encoding: result.encoding,
+            method: key.method,
+            optimizer: key.method.optimizer,
+            encoding: key.method.encoding,
+            init: key.method.init,
             run: key.run,
             master_seed,
             seed: result.seed,

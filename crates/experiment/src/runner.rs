@@ -107,8 +107,7 @@ pub fn run_experiment(
                     .param_set(&key.param_set)
                     .expect("keys come from the spec's sets");
                 let req = RunRequest {
-                    algorithm: key.algorithm,
-                    encoding: set.encoding,
+                    method: key.method,
                     params: set.params,
                     budget: spec.budget,
                     seed: spec.seed(key),

@@ -109,10 +109,10 @@ pub fn check_unique(path: &Path, records: &[RunRecord]) -> Result<(), StoreError
     Ok(())
 }
 
-/// `scenario/param_set/algorithm#run`.
+/// `scenario/param_set/method#run`.
 #[must_use]
 pub fn describe(k: &RunKey) -> String {
-    format!("{}/{}/{}#{}", k.scenario, k.param_set, k.algorithm, k.run)
+    format!("{}/{}/{}#{}", k.scenario, k.param_set, k.method, k.run)
 }
 
 /// Appends records to `runs.jsonl` from any thread.
@@ -194,8 +194,8 @@ fn diff(old: &ExperimentSpec, new: &ExperimentSpec) -> String {
             "scenarios {:?} there, {:?} now",
             old.scenarios, new.scenarios
         )
-    } else if old.algorithms != new.algorithms {
-        "other algorithms".into()
+    } else if old.methods != new.methods {
+        "other methods".into()
     } else if old.budget != new.budget {
         "another budget".into()
     } else {

@@ -1,6 +1,13 @@
-//! The summary of an experiment: per scenario and algorithm the feasible share and cost
+//! The summary of an experiment: per scenario and method the feasible share and cost
 //! statistics, and the tests that settle comparisons (rank-sum against DLS-SMPSO with Holm's
 //! correction, Fisher's exact test on feasibility, Friedman's test with average ranks).
+//!
+//! **Friedman's blocks.** Friedman's test ranks the methods within blocks, so a block must
+//! pair something. Here a block is a run index k of one scenario: the matrix gives run k of
+//! every method the same seed (common random numbers, [`crate::matrix`]). The summary checks
+//! that (every method's record of block k carries the same seed) and lists the blocks it
+//! used; blocks where a method is missing are left out, and if the seeds of a block differ
+//! (records from another seeding scheme) no Friedman test is reported, with the reason.
 //!
 //! Computed from records sorted by run identity, so it is the same whatever the thread count
 //! or shard layout that produced them. Timings are the one thing that differs between two
@@ -10,18 +17,23 @@
 use std::fmt::Write as _;
 
 use serde::{Deserialize, Serialize};
-use swarmplan_core::encoding::EncodingKind;
-use swarmplan_core::optim::Algorithm;
+use swarmplan_core::encoding::{EncodingKind, InitKind};
+use swarmplan_core::method::Method;
+use swarmplan_core::optim::OptimizerKind;
 
 use crate::record::RunRecord;
-use crate::stats::{fisher_exact, friedman, holm, rank_sum, summarize, FriedmanTest, Summary};
+use crate::stats::{
+    fisher_exact, friedman, holm, rank_sum, summarize, FriedmanTest, RankSumMethod, Summary,
+};
 
-/// One algorithm (with one parameter set) on one scenario.
+/// One method (with one parameter set) on one scenario.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct GroupSummary {
-    pub algorithm: Algorithm,
-    pub param_set: String,
+    pub method: Method,
+    pub optimizer: OptimizerKind,
     pub encoding: EncodingKind,
+    pub init: InitKind,
+    pub param_set: String,
     pub runs: usize,
     pub feasible: usize,
     /// Feasibility ratio, percent.
@@ -34,17 +46,19 @@ pub struct GroupSummary {
     /// Wall time per run (not in summary.json: it varies between executions).
     #[serde(skip)]
     pub mean_seconds: f64,
-    /// Against the reference algorithm (absent for the reference itself).
+    /// Against the reference method (absent for the reference itself).
     pub versus_reference: Option<Versus>,
 }
 
-/// Tests of one algorithm against the reference (DLS-SMPSO).
+/// Tests of one method against the reference (DLS-SMPSO).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Versus {
-    /// Mann-Whitney U of this algorithm's costs against the reference's.
+    /// Mann-Whitney U of this method's costs against the reference's.
     pub rank_sum_u: f64,
     pub rank_sum_p: f64,
-    /// Holm-adjusted over the algorithms of the scenario.
+    /// Exact (small samples without ties) or normal approximation.
+    pub rank_sum_method: RankSumMethod,
+    /// Holm-adjusted over the methods of the scenario.
     pub rank_sum_p_holm: f64,
     /// Fisher's exact test on (feasible, infeasible) counts.
     pub fisher_p: f64,
@@ -55,10 +69,14 @@ pub struct Versus {
 pub struct ScenarioSummary {
     pub scenario: String,
     pub param_set: String,
-    pub reference: Option<Algorithm>,
+    pub reference: Option<Method>,
     pub groups: Vec<GroupSummary>,
-    /// Over runs present for every algorithm, blocks = run index.
+    /// Ranks the methods within blocks (run indices with a common seed).
     pub friedman: Option<FriedmanTest>,
+    /// The run indices used as Friedman blocks.
+    pub friedman_blocks: Vec<usize>,
+    /// What the blocks are, or why there is no Friedman test.
+    pub friedman_note: String,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -68,8 +86,11 @@ pub struct ExperimentSummary {
     pub scenarios: Vec<ScenarioSummary>,
 }
 
-/// The algorithm others are compared with, when it is part of the experiment.
-pub const REFERENCE: Algorithm = Algorithm::DlsSmpso;
+/// The method others are compared with, when it is part of the experiment: DLS-SMPSO.
+#[must_use]
+pub fn reference_method() -> Method {
+    Method::preset("dls-smpso").expect("dls-smpso is a preset")
+}
 
 /// Summarises records (any order).
 #[must_use]
@@ -88,20 +109,19 @@ pub fn summarize_records(master_seed: u64, records: &[RunRecord]) -> ExperimentS
             .filter(|r| r.scenario == scenario && r.param_set == set)
             .copied()
             .collect();
-        let mut algs: Vec<Algorithm> = mine.iter().map(|r| r.algorithm).collect();
+        let mut algs: Vec<Method> = mine.iter().map(|r| r.method).collect();
         algs.dedup();
-        let costs = |a: Algorithm| -> Vec<f64> {
+        let costs = |a: Method| -> Vec<f64> {
             mine.iter()
-                .filter(|r| r.algorithm == a)
+                .filter(|r| r.method == a)
                 .map(|r| r.cost_per_uav)
                 .collect()
         };
-        let reference = algs.contains(&REFERENCE).then_some(REFERENCE);
+        let reference = Some(reference_method()).filter(|m| algs.contains(m));
         let mut groups: Vec<GroupSummary> = algs
             .iter()
             .map(|&a| {
-                let rs: Vec<&RunRecord> =
-                    mine.iter().filter(|r| r.algorithm == a).copied().collect();
+                let rs: Vec<&RunRecord> = mine.iter().filter(|r| r.method == a).copied().collect();
                 let n = rs.len();
                 let feasible = rs.iter().filter(|r| r.feasible).count();
                 let all = costs(a);
@@ -111,9 +131,11 @@ pub fn summarize_records(master_seed: u64, records: &[RunRecord]) -> ExperimentS
                     .map(|r| r.cost_per_uav)
                     .collect();
                 GroupSummary {
-                    algorithm: a,
+                    method: a,
+                    optimizer: a.optimizer,
+                    encoding: a.encoding,
+                    init: a.init,
                     param_set: set.clone(),
-                    encoding: rs[0].encoding,
                     runs: n,
                     feasible,
                     fr_percent: 100.0 * feasible as f64 / n as f64,
@@ -130,69 +152,44 @@ pub fn summarize_records(master_seed: u64, records: &[RunRecord]) -> ExperimentS
             let ref_costs = costs(rf);
             let ref_group = groups
                 .iter()
-                .find(|g| g.algorithm == rf)
+                .find(|g| g.method == rf)
                 .expect("reference present");
             let (rf_ok, rf_n) = (ref_group.feasible as u64, ref_group.runs as u64);
-            let tests: Vec<(usize, f64, f64, f64)> = groups
+            let tests: Vec<(usize, f64, f64, RankSumMethod, f64)> = groups
                 .iter()
                 .enumerate()
-                .filter(|(_, g)| g.algorithm != rf)
+                .filter(|(_, g)| g.method != rf)
                 .filter_map(|(i, g)| {
-                    let t = rank_sum(&costs(g.algorithm), &ref_costs)?;
+                    let t = rank_sum(&costs(g.method), &ref_costs)?;
                     let f = fisher_exact(
                         g.feasible as u64,
                         (g.runs - g.feasible) as u64,
                         rf_ok,
                         rf_n - rf_ok,
                     );
-                    Some((i, t.u, t.p_value, f))
+                    Some((i, t.u, t.p_value, t.method, f))
                 })
                 .collect();
             let adjusted = holm(&tests.iter().map(|t| t.2).collect::<Vec<_>>());
-            for ((i, u, p, f), ph) in tests.into_iter().zip(adjusted) {
+            for ((i, u, p, m, f), ph) in tests.into_iter().zip(adjusted) {
                 groups[i].versus_reference = Some(Versus {
                     rank_sum_u: u,
                     rank_sum_p: p,
+                    rank_sum_method: m,
                     rank_sum_p_holm: ph,
                     fisher_p: f,
                 });
             }
         }
-        // Friedman over the run indices every algorithm has.
-        let runs_of = |a: Algorithm| -> Vec<usize> {
-            mine.iter()
-                .filter(|r| r.algorithm == a)
-                .map(|r| r.run)
-                .collect()
-        };
-        let common: Vec<usize> = runs_of(algs[0])
-            .into_iter()
-            .filter(|run| algs.iter().all(|&a| runs_of(a).contains(run)))
-            .collect();
-        let blocks: Vec<Vec<f64>> = common
-            .iter()
-            .map(|run| {
-                algs.iter()
-                    .map(|&a| {
-                        mine.iter()
-                            .find(|r| r.algorithm == a && r.run == *run)
-                            .expect("common run")
-                            .cost_per_uav
-                    })
-                    .collect()
-            })
-            .collect();
-        let friedman = if algs.len() >= 2 {
-            friedman(&blocks)
-        } else {
-            None
-        };
+        let (friedman, friedman_blocks, friedman_note) = friedman_over_runs(&mine, &algs);
         scenarios.push(ScenarioSummary {
             scenario,
             param_set: set,
             reference,
             groups,
             friedman,
+            friedman_blocks,
+            friedman_note,
         });
     }
     ExperimentSummary {
@@ -200,6 +197,47 @@ pub fn summarize_records(master_seed: u64, records: &[RunRecord]) -> ExperimentS
         records: records.len(),
         scenarios,
     }
+}
+
+/// Friedman's test over the run indices that every method has, each a block of common
+/// random numbers; checks that the block's records share one seed.
+fn friedman_over_runs(
+    mine: &[&RunRecord],
+    methods: &[Method],
+) -> (Option<FriedmanTest>, Vec<usize>, String) {
+    if methods.len() < 2 {
+        return (None, Vec::new(), "one method: nothing to rank".into());
+    }
+    let of = |m: Method, run: usize| mine.iter().find(|r| r.method == m && r.run == run);
+    let mut runs: Vec<usize> = mine.iter().map(|r| r.run).collect();
+    runs.sort_unstable();
+    runs.dedup();
+    let common: Vec<usize> = runs
+        .into_iter()
+        .filter(|&run| methods.iter().all(|&m| of(m, run).is_some()))
+        .collect();
+    let mut blocks = Vec::with_capacity(common.len());
+    for &run in &common {
+        let recs: Vec<&RunRecord> = methods
+            .iter()
+            .filter_map(|&m| of(m, run))
+            .copied()
+            .collect();
+        if recs.iter().any(|r| r.seed != recs[0].seed) {
+            return (
+                None,
+                Vec::new(),
+                format!("no Friedman test: the methods' runs {run} have different seeds, so run indices are not blocks"),
+            );
+        }
+        blocks.push(recs.iter().map(|r| r.cost_per_uav).collect::<Vec<f64>>());
+    }
+    let note = format!(
+        "blocks: {} run indices, each run with one seed shared by all {} methods (common random numbers)",
+        common.len(),
+        methods.len()
+    );
+    (friedman(&blocks), common, note)
 }
 
 fn num(v: Option<f64>) -> String {
@@ -233,29 +271,31 @@ pub fn markdown(s: &ExperimentSummary) -> String {
         );
         let _ = writeln!(
             out,
-            "| Algorithm | Worst | Optimal | Mean | FR(%) |\n|---|---|---|---|---|"
+            "| Method | Worst | Optimal | Mean | FR(%) |\n|---|---|---|---|---|"
         );
         for g in &sc.groups {
             let c = g.cost.as_ref();
             let _ = writeln!(
                 out,
                 "| {} | {} | {} | {} | {:.1} |",
-                g.algorithm,
+                g.method,
                 num(c.map(|c| c.max)),
                 num(c.map(|c| c.min)),
                 num(c.map(|c| c.mean)),
                 g.fr_percent
             );
         }
-        let _ = writeln!(out, "\n| algorithm | encoding | runs | feasible | median | std | feasible runs: worst / best / mean / median / std | mean evaluations | mean s/run |\n|---|---|---|---|---|---|---|---|---|");
+        let _ = writeln!(out, "\n| method | optimizer | encoding | init | runs | feasible | median | std | feasible runs: worst / best / mean / median / std | mean evaluations | mean s/run |\n|---|---|---|---|---|---|---|---|---|---|---|");
         for g in &sc.groups {
             let c = g.cost.as_ref();
             let f = g.cost_feasible.as_ref();
             let _ = writeln!(
                 out,
-                "| {} | {} | {} | {} | {} | {} | {} / {} / {} / {} / {} | {:.0} | {:.3} |",
-                g.algorithm,
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} / {} / {} / {} / {} | {:.0} | {:.3} |",
+                g.method,
+                g.optimizer,
                 g.encoding,
+                g.init,
                 g.runs,
                 g.feasible,
                 num(c.map(|c| c.median)),
@@ -270,15 +310,16 @@ pub fn markdown(s: &ExperimentSummary) -> String {
             );
         }
         if let Some(rf) = sc.reference {
-            let _ = writeln!(out, "\nAgainst {rf}: Wilcoxon rank-sum on cost (two-sided, Holm-adjusted over the algorithms) and Fisher's exact test on FR.\n\n| algorithm | U | p | p (Holm) | Fisher p (FR) |\n|---|---|---|---|---|");
+            let _ = writeln!(out, "\nAgainst {rf}: Wilcoxon rank-sum on cost (two-sided, Holm-adjusted over the methods; p exact for samples without ties and n1 n2 <= 2500, else the normal approximation with tie correction, as the column says) and Fisher's exact test on FR.\n\n| method | U | p | p from | p (Holm) | Fisher p (FR) |\n|---|---|---|---|---|---|");
             for g in &sc.groups {
                 if let Some(v) = &g.versus_reference {
                     let _ = writeln!(
                         out,
-                        "| {} | {:.1} | {} | {} | {} |",
-                        g.algorithm,
+                        "| {} | {:.1} | {} | {} | {} | {} |",
+                        g.method,
                         v.rank_sum_u,
                         p(v.rank_sum_p),
+                        v.rank_sum_method.name(),
                         p(v.rank_sum_p_holm),
                         p(v.fisher_p)
                     );
@@ -290,28 +331,29 @@ pub fn markdown(s: &ExperimentSummary) -> String {
                 .groups
                 .iter()
                 .zip(&fr.mean_ranks)
-                .map(|(g, r)| format!("{} {r:.2}", g.algorithm))
+                .map(|(g, r)| format!("{} {r:.2}", g.method))
                 .collect();
             let _ = writeln!(
                 out,
-                "\nFriedman test over {} algorithms: chi2 = {:.3}, df = {}, p = {}. Average ranks (1 = best): {}.\n",
+                "\nFriedman test over {} methods: chi2 = {:.3}, df = {}, p = {}. Average ranks (1 = best): {}. {}.\n",
                 sc.groups.len(),
                 fr.statistic,
                 fr.df,
                 p(fr.p_value),
-                ranks.join(", ")
+                ranks.join(", "),
+                sc.friedman_note
             );
         } else {
-            out.push('\n');
+            let _ = writeln!(out, "\n{}.\n", sc.friedman_note);
         }
     }
     out
 }
 
-/// `summary.csv`: one row per scenario, parameter set and algorithm.
+/// `summary.csv`: one row per scenario, parameter set and method.
 #[must_use]
 pub fn csv(s: &ExperimentSummary) -> String {
-    let mut out = String::from("scenario,param_set,algorithm,encoding,runs,feasible,fr_percent,worst,best,mean,median,std,feasible_worst,feasible_best,feasible_mean,feasible_median,feasible_std,mean_evaluations,mean_seconds,rank_sum_p,rank_sum_p_holm,fisher_p\n");
+    let mut out = String::from("scenario,param_set,method,optimizer,encoding,init,runs,feasible,fr_percent,worst,best,mean,median,std,feasible_worst,feasible_best,feasible_mean,feasible_median,feasible_std,mean_evaluations,mean_seconds,rank_sum_p,rank_sum_p_holm,fisher_p\n");
     let opt = |v: Option<f64>| {
         v.map_or(String::new(), |x| {
             if x.is_finite() {
@@ -328,11 +370,13 @@ pub fn csv(s: &ExperimentSummary) -> String {
             let v = g.versus_reference.as_ref();
             let _ = writeln!(
                 out,
-                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
                 sc.scenario,
                 sc.param_set,
-                g.algorithm,
+                g.method,
+                g.optimizer,
                 g.encoding,
+                g.init,
                 g.runs,
                 g.feasible,
                 g.fr_percent,

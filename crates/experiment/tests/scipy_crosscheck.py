@@ -54,7 +54,8 @@ def rank_sum(case):
     r = stats.mannwhitneyu(
         x, y, alternative="two-sided", method="asymptotic", use_continuity=True
     )
-    return {"u": out(r.statistic), "p_value": out(r.pvalue)}
+    e = stats.mannwhitneyu(x, y, alternative="two-sided", method="exact")
+    return {"u": out(r.statistic), "p_value": out(r.pvalue), "p_exact": out(e.pvalue)}
 
 
 def holm_formula(p):

@@ -3,7 +3,7 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use rand::Rng as _;
-use swarmplan_core::encoding::EncodingKind;
+use swarmplan_core::encoding::{EncodingKind, InitKind};
 use swarmplan_core::planning::PlanningProblem;
 use swarmplan_core::problem::Problem;
 use swarmplan_core::rng::rng_from_seed;
@@ -14,7 +14,7 @@ fn bench(c: &mut Criterion) {
         let loaded = load_spec(case).expect("built-in scenario");
         let world = build_world(&loaded, None).expect("built-in world");
         for kind in [EncodingKind::Spherical, EncodingKind::Cartesian] {
-            let problem = PlanningProblem::new(&world, kind);
+            let problem = PlanningProblem::new(&world, kind, InitKind::Uniform);
             let mut rng = rng_from_seed(42);
             // 64 random candidates, cycled: a mix of what optimizers evaluate.
             let xs: Vec<Vec<f64>> = (0..64)

@@ -3,26 +3,23 @@
 //! paper case <= 0.25 s. SPSO's DEM is used when `../shared/data/spso` has it, else the
 //! procedural terrain.
 
-use std::path::PathBuf;
-
 use criterion::{criterion_group, criterion_main, Criterion};
-use swarmplan_core::optim::{Algorithm, AlgorithmParams, Budget};
+use swarmplan_core::method::Method;
+use swarmplan_core::optim::{Budget, OptimizerParams};
 use swarmplan_core::run::{run, RunRequest};
 use swarmplan_io::scenario::{build_world, load_spec};
 
-fn request(algorithm: Algorithm, seed: u64) -> RunRequest {
+fn request(method: &str, seed: u64) -> RunRequest {
     RunRequest {
-        algorithm,
-        encoding: None,
-        params: AlgorithmParams::default(),
+        method: Method::preset(method).expect("a preset"),
+        params: OptimizerParams::default(),
         budget: Budget::iterations(200),
         seed,
     }
 }
 
 fn bench(c: &mut Criterion) {
-    let dem = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/data/spso/ChrismasTerrain.tif");
+    let dem = swarmplan_io::reference_data::shared_dir().join("data/spso/ChrismasTerrain.tif");
     let dem = dem.exists().then_some(dem);
     let mut group = c.benchmark_group("run");
     group.sample_size(10);
@@ -32,7 +29,7 @@ fn bench(c: &mut Criterion) {
     group.bench_function("spso/spso-case1", |b| {
         b.iter(|| {
             seed += 1;
-            run(&spso, &request(Algorithm::Spso, seed), &mut |_| {})
+            run(&spso, &request("spso", seed), &mut |_| {})
                 .assessment
                 .total
         });
@@ -42,7 +39,7 @@ fn bench(c: &mut Criterion) {
         group.bench_function(format!("dls-smpso/{case}"), |b| {
             b.iter(|| {
                 seed += 1;
-                run(&world, &request(Algorithm::DlsSmpso, seed), &mut |_| {})
+                run(&world, &request("dls-smpso", seed), &mut |_| {})
                     .assessment
                     .total
             });

@@ -10,7 +10,8 @@
 
 use swarmplan_core::cost::assess;
 use swarmplan_core::cost::comm::{contact_at, Contact};
-use swarmplan_core::optim::{Algorithm, AlgorithmParams, Budget};
+use swarmplan_core::method::Method;
+use swarmplan_core::optim::{Budget, OptimizerParams};
 use swarmplan_core::plan::Plan;
 use swarmplan_core::run::{run, RunRequest};
 use swarmplan_core::timing::TimedPlan;
@@ -20,9 +21,8 @@ use swarmplan_io::scenario::{build_world, load_spec};
 
 fn request(seed: u64) -> RunRequest {
     RunRequest {
-        algorithm: Algorithm::DlsSmpso,
-        encoding: None,
-        params: AlgorithmParams::default(),
+        method: Method::preset("dls-smpso").expect("a preset"),
+        params: OptimizerParams::default(),
         budget: Budget::iterations(200),
         seed,
     }

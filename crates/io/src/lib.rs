@@ -1,10 +1,12 @@
 //! swarmplan-io: everything that touches files. Scenario TOML, plan JSON, terrain readers,
 //! georeferencing and mission exports live here so that `swarmplan-core` stays free of I/O.
 
+pub mod artifact;
 pub mod dem;
 pub mod dem_ops;
 pub mod export;
 pub mod geo;
 pub mod import;
 pub mod plan_file;
+pub mod reference_data;
 pub mod scenario;

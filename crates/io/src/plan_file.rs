@@ -3,12 +3,17 @@
 //! Input needs only `{"uavs": [{"waypoints": [[x, y, z_agl], ...]}, ...]}` with the start
 //! and goal included. Output adds, per UAV, the time, speed and absolute and above-ground
 //! altitude of every waypoint; readers ignore those extras, so a written plan reads back.
+//!
+//! A written plan also records the scenario's name and the terrain's fingerprint. A plan
+//! carries heights above ground, so on other terrain it is another plan: reading one whose
+//! recorded scenario or terrain differs from the world's is refused unless the caller says
+//! [`Provenance::AllowOther`] (`evaluate --allow-other-terrain`). Hand-written plans without
+//! these fields are accepted as they are.
 
 use std::path::Path;
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
-use swarmplan_core::cost::Assessment;
 use swarmplan_core::plan::{Path as UavPath, Plan};
 use swarmplan_core::timing::TimedPlan;
 use swarmplan_core::world::World;
@@ -23,6 +28,13 @@ pub enum PlanFileError {
     },
     #[error("{path}: not a plan file: {message}")]
     Parse { path: String, message: String },
+    #[error("{path}: {what}: made for {recorded}, not for {current}; pass --allow-other-terrain to evaluate it anyway")]
+    Provenance {
+        path: String,
+        what: &'static str,
+        recorded: String,
+        current: String,
+    },
     #[error("{path}: {field}: {message}")]
     Invalid {
         path: String,
@@ -55,26 +67,74 @@ pub struct UavEntry {
 pub struct PlanFile {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scenario: Option<String>,
+    /// [`swarmplan_core::world::terrain::Terrain::fingerprint`] of the terrain it was made on.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub terrain_fingerprint: Option<String>,
     pub uavs: Vec<UavEntry>,
+}
+
+/// Whether a plan's recorded scenario and terrain must match the world it is read into.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Provenance {
+    /// Refuse a plan recorded for another scenario or terrain.
+    MustMatch,
+    /// Read it anyway (the caller asked to evaluate a plan elsewhere).
+    AllowOther,
 }
 
 /// Reads a plan file and checks it against `world`: one path per UAV, at least start and
 /// goal, finite numbers, first and last waypoints at the scenario's start and goal.
-pub fn read_plan(path: &Path, world: &World) -> Result<Plan, PlanFileError> {
+pub fn read_plan(
+    path: &Path,
+    world: &World,
+    provenance: Provenance,
+) -> Result<Plan, PlanFileError> {
     let p = path.display().to_string();
     let text = std::fs::read_to_string(path).map_err(|source| PlanFileError::Read {
         path: p.clone(),
         source,
     })?;
-    parse_plan(&text, &p, world)
+    parse_plan(&text, &p, world, provenance)
 }
 
 /// Parses plan JSON (see [`read_plan`]); `origin` names it in errors.
-pub fn parse_plan(text: &str, origin: &str, world: &World) -> Result<Plan, PlanFileError> {
+pub fn parse_plan(
+    text: &str,
+    origin: &str,
+    world: &World,
+    provenance: Provenance,
+) -> Result<Plan, PlanFileError> {
     let file: PlanFile = serde_json::from_str(text).map_err(|e| PlanFileError::Parse {
         path: origin.to_string(),
         message: e.to_string(),
     })?;
+    if provenance == Provenance::MustMatch {
+        let mismatch = |what, recorded: &str, current: String| PlanFileError::Provenance {
+            path: origin.to_string(),
+            what,
+            recorded: recorded.to_string(),
+            current,
+        };
+        if let Some(s) = file.scenario.as_deref().filter(|s| *s != world.spec.name) {
+            return Err(mismatch(
+                "scenario",
+                &format!("scenario `{s}`"),
+                format!("scenario `{}`", world.spec.name),
+            ));
+        }
+        let current = world.terrain.fingerprint();
+        if let Some(t) = file
+            .terrain_fingerprint
+            .as_deref()
+            .filter(|t| *t != current)
+        {
+            return Err(mismatch(
+                "terrain",
+                &format!("terrain {t}"),
+                format!("terrain {current} ({})", world.spec.terrain.source),
+            ));
+        }
+    }
     let invalid = |field: String, message: String| PlanFileError::Invalid {
         path: origin.to_string(),
         field,
@@ -154,54 +214,7 @@ pub fn plan_file(world: &World, plan: &Plan) -> PlanFile {
         .collect();
     PlanFile {
         scenario: Some(world.spec.name.clone()),
+        terrain_fingerprint: Some(world.terrain.fingerprint()),
         uavs,
-    }
-}
-
-/// The `--json` report of `evaluate`: feasibility, cost and violations.
-#[must_use]
-pub fn assessment_json(a: &Assessment) -> serde_json::Value {
-    let terms = a.term_totals();
-    let mut term_map = serde_json::Map::new();
-    for (name, v) in swarmplan_core::cost::Terms::NAMES
-        .iter()
-        .zip(terms.values())
-    {
-        term_map.insert((*name).to_string(), json_number(v));
-    }
-    term_map.insert("penalty".into(), json_number(a.penalty));
-    serde_json::json!({
-        "feasible": a.feasible(),
-        "violation": json_number(a.violation),
-        "cost": {
-            "total": json_number(a.total),
-            "per_uav": json_number(a.per_uav_cost()),
-            "terms": term_map,
-        },
-        "uavs": a.per_uav.iter().map(|u| serde_json::json!({
-            "cost": json_number(u.cost),
-            "length_m": json_number(u.length_m),
-            "speed_mps": json_number(u.speed_mps),
-            "arrival_s": json_number(u.arrival_s),
-            "energy_j": json_number(u.energy_j),
-            "battery_ratio": json_number(u.battery_ratio),
-            "min_clearance_m": json_number(u.min_clearance_m),
-            "outage_s": json_number(u.outage_s),
-        })).collect::<Vec<_>>(),
-        "violations": a.violations.clone().unwrap_or_default(),
-    })
-}
-
-/// JSON has no infinity: non-finite numbers become the strings "inf", "-inf", "nan".
-#[must_use]
-pub fn json_number(v: f64) -> serde_json::Value {
-    if v.is_finite() {
-        serde_json::json!(v)
-    } else if v.is_nan() {
-        serde_json::json!("nan")
-    } else if v > 0.0 {
-        serde_json::json!("inf")
-    } else {
-        serde_json::json!("-inf")
     }
 }

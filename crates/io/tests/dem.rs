@@ -11,6 +11,7 @@ use swarmplan_core::world::terrain::Sampling;
 use swarmplan_io::dem::{
     read_terrain, Crs, DemError, DemFormat, DemFrame, DemOptions, LoadedDem, SampleType,
 };
+use swarmplan_io::reference_data::reference_file;
 use tiff::encoder::colortype::{self, ColorType};
 use tiff::encoder::{Compression, DeflateLevel, TiffEncoder, TiffValue};
 use tiff::tags::Tag;
@@ -112,23 +113,11 @@ fn close(a: f64, b: f64, tol: f64) -> bool {
 
 // ---------------------------------------------------------------- SPSO reference terrain
 
-fn shared_dir() -> PathBuf {
-    match std::env::var_os("SWARMPLAN_SHARED") {
-        Some(dir) => PathBuf::from(dir),
-        None => Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared"),
-    }
-}
-
 #[test]
 fn spso_reference_terrain() {
-    let path = shared_dir().join("data/spso/ChrismasTerrain.tif");
-    if !path.exists() {
-        println!(
-            "skipped: {} not found (set SWARMPLAN_SHARED to the shared folder to run it)",
-            path.display()
-        );
+    let Some(path) = reference_file("spso/ChrismasTerrain.tif").unwrap() else {
         return;
-    }
+    };
     let t0 = Instant::now();
     let dem = read_terrain(&path, &DemOptions::SPSO).expect("SPSO DEM reads");
     println!(

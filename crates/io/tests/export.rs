@@ -11,7 +11,8 @@ use std::process::Command;
 
 use serde_json::Value;
 use swarmplan_core::cost::assess;
-use swarmplan_core::optim::{Algorithm, AlgorithmParams, Budget, IterationRecord};
+use swarmplan_core::method::Method;
+use swarmplan_core::optim::{Budget, IterationRecord, OptimizerParams};
 use swarmplan_core::plan::Plan;
 use swarmplan_core::run::{run, RunRequest};
 use swarmplan_core::world::World;
@@ -28,11 +29,10 @@ fn tiny() -> World {
 
 /// A short DLS-SMPSO run on `tiny` (a real, bent plan; seed fixed).
 fn planned(world: &World) -> Plan {
-    let mut params = AlgorithmParams::default();
+    let mut params = OptimizerParams::default();
     params.set_population(16);
     let req = RunRequest {
-        algorithm: Algorithm::DlsSmpso,
-        encoding: None,
+        method: Method::preset("dls-smpso").expect("a preset"),
         params,
         budget: Budget {
             iterations: Some(15),

@@ -454,12 +454,11 @@ fn geographic_dem_frame_agrees_with_the_reader() {
 
 #[test]
 fn spso_reference_dem_is_georeferenced_when_present() {
-    let path =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/spso/ChrismasTerrain.tif");
-    if !path.exists() {
-        println!("skipped: {} not found", path.display());
+    let Some(path) =
+        swarmplan_io::reference_data::reference_file("spso/ChrismasTerrain.tif").unwrap()
+    else {
         return;
-    }
+    };
     let dem = read_terrain(&path, &DemOptions::default()).unwrap();
     let f = LocalFrame::from_dem(&dem).unwrap();
     let o = f.origin().unwrap();

@@ -33,13 +33,13 @@ fn the_straight_plan_hits_threats_and_loses_contact_in_both_cases() {
 
 #[test]
 fn tracing_per_uav_costs_does_not_change_the_run() {
-    use swarmplan_core::optim::{Algorithm, AlgorithmParams, Budget};
+    use swarmplan_core::method::Method;
+    use swarmplan_core::optim::{Budget, OptimizerParams};
     use swarmplan_core::run::{run, run_with_uav_trace, RunRequest};
     let world = build_world(&load_spec("tiny").unwrap(), None).unwrap();
     let req = RunRequest {
-        algorithm: Algorithm::DlsSmpso,
-        encoding: None,
-        params: AlgorithmParams::default(),
+        method: Method::preset("dls-smpso").expect("a preset"),
+        params: OptimizerParams::default(),
         budget: Budget::iterations(15),
         seed: 11,
     };

@@ -8,7 +8,7 @@ use std::sync::OnceLock;
 
 use proptest::prelude::*;
 use swarmplan_core::cost::assess;
-use swarmplan_core::encoding::{angle::Angle, build, EncodingKind, Frame, PathEncoding};
+use swarmplan_core::encoding::{angle::Angle, build, EncodingKind, Frame, InitKind, PathEncoding};
 use swarmplan_core::planning::PlanningProblem;
 use swarmplan_core::problem::Problem;
 use swarmplan_core::world::World;
@@ -96,7 +96,7 @@ proptest! {
         let x = into_bounds(&u, enc.as_ref());
         let a = assess(w, &enc.decode(&x), true);
         for r in &a.per_uav {
-            for v in r.raw.values().into_iter().chain(r.weighted.values()) {
+            for v in r.raw.iter().chain(r.weighted.iter()).map(|(_, v)| v) {
                 prop_assert!(v.is_finite() && v >= 0.0, "term {}", v);
             }
             prop_assert!(r.energy_j.is_finite() && r.energy_j > 0.0);
@@ -109,7 +109,7 @@ proptest! {
     #[test]
     fn nan_inputs_never_produce_a_nan_cost(u in raw_vector(), holes in prop::collection::vec(0usize..DIM, 1..5)) {
         let w = world();
-        let p = PlanningProblem::new(w, EncodingKind::Spherical);
+        let p = PlanningProblem::new(w, EncodingKind::Spherical, InitKind::Uniform);
         let mut x = into_bounds(&u, &*swarmplan_core::encoding::build(EncodingKind::Spherical, w));
         for h in holes {
             x[h] = f64::NAN;

@@ -5,38 +5,23 @@
 
 #![allow(clippy::unwrap_used)] // tests fail loudly by design
 
-use std::path::PathBuf;
-
-use swarmplan_core::optim::{Algorithm, AlgorithmParams, Budget};
+use swarmplan_core::method::Method;
+use swarmplan_core::optim::{Budget, OptimizerParams};
 use swarmplan_core::run::{run, RunRequest};
+use swarmplan_io::reference_data::reference_file;
 use swarmplan_io::scenario::{build_world, load_spec};
-
-fn spso_dem() -> PathBuf {
-    std::env::var_os("SWARMPLAN_SHARED")
-        .map_or_else(
-            || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared"),
-            PathBuf::from,
-        )
-        .join("data/spso/ChrismasTerrain.tif")
-}
 
 #[test]
 fn spso_mean_best_cost_is_in_the_reference_band() {
-    let tif = spso_dem();
-    if !tif.exists() {
-        eprintln!(
-            "skipped: {} not found (set SWARMPLAN_SHARED)",
-            tif.display()
-        );
+    let Some(tif) = reference_file("spso/ChrismasTerrain.tif").unwrap() else {
         return;
-    }
+    };
     let world = build_world(&load_spec("spso-case1").unwrap(), Some(&tif)).unwrap();
     let costs: Vec<f64> = (1..=30)
         .map(|seed| {
             let req = RunRequest {
-                algorithm: Algorithm::Spso,
-                encoding: None,
-                params: AlgorithmParams::default(),
+                method: Method::preset("spso").expect("a preset"),
+                params: OptimizerParams::default(),
                 budget: Budget::iterations(200),
                 seed,
             };

@@ -7,20 +7,11 @@
 
 #![allow(clippy::unwrap_used)] // tests fail loudly by design
 
-use std::path::PathBuf;
-
 use swarmplan_core::cost::assess;
+use swarmplan_core::cost::TermId;
 use swarmplan_core::encoding::{build, EncodingKind};
+use swarmplan_io::reference_data::reference_files;
 use swarmplan_io::scenario::{build_world, load_spec};
-
-fn shared_spso() -> PathBuf {
-    std::env::var_os("SWARMPLAN_SHARED")
-        .map_or_else(
-            || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared"),
-            PathBuf::from,
-        )
-        .join("data/spso")
-}
 
 fn num(v: &serde_json::Value) -> f64 {
     let s = v
@@ -51,18 +42,12 @@ fn close(got: f64, want: f64, what: &str) {
 
 #[test]
 fn matches_spso_mycost_on_every_reference_vector() {
-    let dir = shared_spso();
-    let (tif, vectors) = (
-        dir.join("ChrismasTerrain.tif"),
-        dir.join("cost-vectors.json"),
-    );
-    if !tif.exists() || !vectors.exists() {
-        eprintln!(
-            "skipped: SPSO reference files not found in {} (set SWARMPLAN_SHARED)",
-            dir.display()
-        );
+    let Some(files) =
+        reference_files(&["spso/ChrismasTerrain.tif", "spso/cost-vectors.json"]).unwrap()
+    else {
         return;
-    }
+    };
+    let (tif, vectors) = (files[0].clone(), files[1].clone());
     let data: Vec<serde_json::Value> =
         serde_json::from_str(&std::fs::read_to_string(&vectors).unwrap()).unwrap();
     assert_eq!(data.len(), 40);
@@ -90,15 +75,23 @@ fn matches_spso_mycost_on_every_reference_vector() {
         }
         let a = assess(world, &plan, false);
         let t = a.per_uav[0].raw;
-        close(t.length, num(&v["J1_length"]), &format!("vector {idx} J1"));
-        close(t.threat, num(&v["J2_threat"]), &format!("vector {idx} J2"));
         close(
-            t.altitude,
+            t[TermId::Length],
+            num(&v["J1_length"]),
+            &format!("vector {idx} J1"),
+        );
+        close(
+            t[TermId::Threat],
+            num(&v["J2_threat"]),
+            &format!("vector {idx} J2"),
+        );
+        close(
+            t[TermId::Altitude],
             num(&v["J3_altitude"]),
             &format!("vector {idx} J3"),
         );
         close(
-            t.smoothness,
+            t[TermId::Smoothness],
             num(&v["J4_smoothness"]),
             &format!("vector {idx} J4"),
         );

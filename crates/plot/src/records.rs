@@ -1,11 +1,17 @@
-//! Bench records grouped the way the bench figures compare them: one group per algorithm
-//! (and per parameter set, when a scenario was run with more than one), in the order of
-//! [`Algorithm::ALL`].
+//! Bench records grouped the way the bench figures compare them: one group per method
+//! (and per parameter set, when a scenario was run with more than one), presets in the
+//! order of [`PRESETS`] (the paper's table order), other methods after them by label.
 
-use swarmplan_core::optim::Algorithm;
+use swarmplan_core::method::{Method, PRESETS};
 use swarmplan_experiment::record::RunRecord;
 
-/// The runs of one algorithm (and parameter set) on one scenario.
+/// Where `m` goes in the figures: presets first, in table order.
+fn order(m: &Method) -> (usize, String) {
+    let at = PRESETS.iter().position(|p| p.method == *m);
+    (at.unwrap_or(PRESETS.len()), m.label())
+}
+
+/// The runs of one method (and parameter set) on one scenario.
 pub(crate) struct Group<'a> {
     pub label: String,
     pub runs: Vec<&'a RunRecord>,
@@ -17,13 +23,16 @@ pub(crate) fn groups<'a>(records: &'a [RunRecord], scenario: &str) -> Vec<Group<
     let mut sets: Vec<&str> = mine.iter().map(|r| r.param_set.as_str()).collect();
     sets.sort_unstable();
     sets.dedup();
+    let mut methods: Vec<Method> = mine.iter().map(|r| r.method).collect();
+    methods.sort_by_key(order);
+    methods.dedup();
     let mut out = Vec::new();
-    for alg in Algorithm::ALL {
+    for alg in methods {
         for set in &sets {
             let runs: Vec<&RunRecord> = mine
                 .iter()
                 .copied()
-                .filter(|r| r.algorithm == alg && r.param_set == *set)
+                .filter(|r| r.method == alg && r.param_set == *set)
                 .collect();
             if runs.is_empty() {
                 continue;

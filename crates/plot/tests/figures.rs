@@ -6,7 +6,8 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use swarmplan_core::encoding::{build, EncodingKind};
-use swarmplan_core::optim::{Algorithm, AlgorithmParams};
+use swarmplan_core::method::Method;
+use swarmplan_core::optim::OptimizerParams;
 use swarmplan_core::plan::Plan;
 use swarmplan_core::world::World;
 use swarmplan_experiment::record::RunRecord;
@@ -37,19 +38,21 @@ fn plan(world: &World) -> Plan {
     enc.decode(&x)
 }
 
-fn record(alg: Algorithm, run: usize, cost: f64, feasible: bool) -> RunRecord {
+fn record(alg: Method, run: usize, cost: f64, feasible: bool) -> RunRecord {
     let convergence: Vec<f64> = (0..31)
         .map(|k| cost * (1.0 + 4.0 * (-(k as f64) / 6.0).exp()) + run as f64)
         .collect();
     RunRecord {
         scenario: "tiny".into(),
         param_set: "default".into(),
-        algorithm: alg,
-        encoding: EncodingKind::Spherical,
+        method: alg,
+        optimizer: alg.optimizer,
+        encoding: alg.encoding,
+        init: alg.init,
         run,
         master_seed: 1,
         seed: 100 + run as u64,
-        params: AlgorithmParams::default(),
+        params: OptimizerParams::default(),
         cost_total: cost * 2.0,
         cost_per_uav: cost,
         uav_costs: vec![cost, cost],
@@ -65,7 +68,8 @@ fn record(alg: Algorithm, run: usize, cost: f64, feasible: bool) -> RunRecord {
 
 fn records() -> Vec<RunRecord> {
     let mut out = Vec::new();
-    for (a, alg) in [Algorithm::DlsSmpso, Algorithm::Spso, Algorithm::Pso]
+    for (a, alg) in ["dls-smpso", "spso", "pso"]
+        .map(|m| Method::preset(m).expect("a preset"))
         .into_iter()
         .enumerate()
     {

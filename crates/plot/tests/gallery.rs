@@ -14,10 +14,11 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 use swarmplan_core::encoding::{build, EncodingKind};
-use swarmplan_core::optim::{Algorithm, AlgorithmParams};
+use swarmplan_core::method::Method;
+use swarmplan_core::optim::OptimizerParams;
 use swarmplan_experiment::record::RunRecord;
 use swarmplan_experiment::store::read_records;
-use swarmplan_io::plan_file::read_plan;
+use swarmplan_io::plan_file::{read_plan, Provenance};
 use swarmplan_io::scenario::{build_world, load_spec};
 use swarmplan_plot::{
     bench_boxplots, comm_timeline, convergence_bench, convergence_run, top_view, view_3d,
@@ -25,7 +26,7 @@ use swarmplan_plot::{
 
 fn synthetic_records() -> Vec<RunRecord> {
     let mut out = Vec::new();
-    for (a, alg) in Algorithm::ALL.into_iter().enumerate() {
+    for (a, alg) in Method::paper_methods().into_iter().enumerate() {
         for run in 0..12 {
             let spread = ((run * 7 + a * 3) % 11) as f64;
             let end = 5200.0 + 150.0 * a as f64 + 60.0 * spread;
@@ -41,12 +42,14 @@ fn synthetic_records() -> Vec<RunRecord> {
             out.push(RunRecord {
                 scenario: "paper-case1".into(),
                 param_set: "default".into(),
-                algorithm: alg,
-                encoding: EncodingKind::Spherical,
+                method: alg,
+                optimizer: alg.optimizer,
+                encoding: alg.encoding,
+                init: alg.init,
                 run,
                 master_seed: 1,
                 seed: run as u64,
-                params: AlgorithmParams::default(),
+                params: OptimizerParams::default(),
                 cost_total: cost * 5.0,
                 cost_per_uav: cost,
                 uav_costs: vec![cost; 5],
@@ -70,7 +73,10 @@ fn paper_case1_gallery() {
     let loaded = load_spec("paper-case1").unwrap();
     let world = build_world(&loaded, None).unwrap();
     let (plan, what) = match std::env::var("SWARMPLAN_GALLERY_PLAN") {
-        Ok(p) => (read_plan(p.as_ref(), &world).unwrap(), "plan file"),
+        Ok(p) => (
+            read_plan(p.as_ref(), &world, Provenance::MustMatch).unwrap(),
+            "plan file",
+        ),
         Err(_) => {
             let enc = build(EncodingKind::Spherical, &world);
             let x: Vec<f64> = enc

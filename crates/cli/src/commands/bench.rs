@@ -8,7 +8,7 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use swarmplan_core::optim::Algorithm;
+use swarmplan_core::method::Method;
 use swarmplan_experiment::aggregate::aggregate;
 use swarmplan_experiment::matrix::{ExperimentSpec, ParamSet, Shard};
 use swarmplan_experiment::record::RunRecord;
@@ -19,17 +19,18 @@ use super::plan::{budget, load_params, SettingsArgs};
 
 #[derive(Debug, Args)]
 pub struct BenchArgs {
-    /// Experiment file (TOML: master_seed, runs, scenarios, algorithms, [[param_sets]],
+    /// Experiment file (TOML: master_seed, runs, scenarios, methods, [[param_sets]],
     /// [budget], terrain); flags below override its fields.
     #[arg(long)]
     pub experiment: Option<PathBuf>,
     /// Scenarios, comma-separated (default: paper-case1,paper-case2).
     #[arg(long, value_delimiter = ',')]
     pub scenarios: Option<Vec<String>>,
-    /// Algorithms, comma-separated (default: the paper's six plus SPSO).
-    #[arg(long = "algos", value_delimiter = ',')]
-    pub algorithms: Option<Vec<Algorithm>>,
-    /// Runs per scenario and algorithm (default 200).
+    /// Methods, comma-separated: presets or optimizer/encoding/init (default: the paper's
+    /// six plus SPSO).
+    #[arg(long = "methods", visible_alias = "algos", value_delimiter = ',')]
+    pub methods: Option<Vec<Method>>,
+    /// Runs per scenario and method (default 200).
     #[arg(long)]
     pub runs: Option<usize>,
     /// Master seed (default 1); every run's seed derives from it.
@@ -78,8 +79,8 @@ fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
     if let Some(s) = &args.scenarios {
         spec.scenarios.clone_from(s);
     }
-    if let Some(a) = &args.algorithms {
-        spec.algorithms.clone_from(a);
+    if let Some(a) = &args.methods {
+        spec.methods.clone_from(a);
     }
     if let Some(r) = args.runs {
         spec.runs = r;
@@ -100,7 +101,6 @@ fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
         };
         spec.param_sets = vec![ParamSet {
             name: name.into(),
-            encoding: None,
             params,
         }];
     }
@@ -125,9 +125,9 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
         args.threads
     };
     eprintln!(
-        "bench: {} scenarios x {} algorithms x {} parameter sets x {} runs = {} runs, master seed {}, {} threads{}, into {}",
+        "bench: {} scenarios x {} methods x {} parameter sets x {} runs = {} runs, master seed {}, {} threads{}, into {}",
         spec.scenarios.len(),
-        spec.algorithms.len(),
+        spec.methods.len(),
         spec.param_sets.len(),
         spec.runs,
         spec.size(),
@@ -148,7 +148,7 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
     let started = Instant::now();
     let mut start = |pending: usize| bar.set_length(pending as u64);
     let done = |r: &RunRecord| {
-        bar.set_message(format!("{} {} #{}", r.scenario, r.algorithm, r.run));
+        bar.set_message(format!("{} {} #{}", r.scenario, r.method, r.run));
         bar.inc(1);
     };
     let outcome = run_experiment(&spec, &args.out, opts, &mut start, &done)?;

@@ -5,7 +5,8 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Args;
 use swarmplan_core::cost::assess;
-use swarmplan_io::plan_file::{assessment_json, read_plan};
+use swarmplan_io::artifact::AssessmentReport;
+use swarmplan_io::plan_file::{read_plan, Provenance};
 
 use crate::render;
 use crate::ScenarioArgs;
@@ -20,14 +21,25 @@ pub struct EvaluateArgs {
     /// Print one JSON object instead of tables.
     #[arg(long)]
     pub json: bool,
+    /// Evaluate a plan recorded for another scenario or terrain (refused otherwise).
+    #[arg(long)]
+    pub allow_other_terrain: bool,
 }
 
 pub fn run(args: &EvaluateArgs) -> Result<()> {
     let world = super::load_world(&args.scenario)?;
-    let plan = read_plan(&args.plan, &world)?;
+    let provenance = if args.allow_other_terrain {
+        Provenance::AllowOther
+    } else {
+        Provenance::MustMatch
+    };
+    let plan = read_plan(&args.plan, &world, provenance)?;
     let a = assess(&world, &plan, true);
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&assessment_json(&a))?);
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&AssessmentReport::of(&a))?
+        );
     } else {
         print!("{}", render::assessment(&world, &a));
     }

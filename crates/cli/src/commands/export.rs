@@ -10,7 +10,7 @@ use swarmplan_core::plan::Plan;
 use swarmplan_core::world::World;
 use swarmplan_io::export::{write_mission, ExportFormat, Mission};
 use swarmplan_io::geo::{load_spec_with_origin, parse_lat_lon_alt, resolve_frame, FrameSource};
-use swarmplan_io::plan_file::read_plan;
+use swarmplan_io::plan_file::{read_plan, Provenance};
 use swarmplan_io::scenario::build_world;
 
 #[derive(Debug, Args)]
@@ -101,7 +101,7 @@ pub fn run(args: &ExportArgs) -> Result<()> {
         .plan
         .clone()
         .unwrap_or_else(|| args.dir.join("plan.json"));
-    let plan = read_plan(&plan_path, &world)?;
+    let plan = read_plan(&plan_path, &world, Provenance::MustMatch)?;
     let (frame, source) = resolve_frame(&loaded, origin, terrain.as_deref(), explicit)?;
     let out = args.out.clone().unwrap_or_else(|| args.dir.clone());
     let files = write_all(&world, &plan, &frame, &formats, &out)?;

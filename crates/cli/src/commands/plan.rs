@@ -1,15 +1,18 @@
-//! `swarmplan plan`: plan a scenario with one algorithm, print the result, write
-//! `plan.json` and `convergence.csv` into `--out`.
+//! `swarmplan plan`: plan a scenario with one method, print the result, write `plan.json`,
+//! `convergence.csv`, `run.json` (the typed [`RunArtifact`]) and `scenario.toml` into
+//! `--out`.
 
 use std::io::Write as _;
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use clap::Args;
-use swarmplan_core::encoding::EncodingKind;
-use swarmplan_core::optim::{Algorithm, AlgorithmParams, Budget};
+use swarmplan_core::encoding::{EncodingKind, InitKind};
+use swarmplan_core::method::Method;
+use swarmplan_core::optim::{Budget, OptimizerParams};
 use swarmplan_core::run::{run_with_uav_trace, RunRequest};
-use swarmplan_io::plan_file::{assessment_json, json_number, plan_file};
+use swarmplan_io::artifact::{ArtifactFiles, RunArtifact};
+use swarmplan_io::plan_file::plan_file;
 use swarmplan_io::scenario::to_toml;
 
 use crate::render;
@@ -19,12 +22,16 @@ use crate::ScenarioArgs;
 pub struct PlanArgs {
     #[command(flatten)]
     pub scenario: ScenarioArgs,
-    /// Algorithm: pso, apso, spso, dls-smpso, qpso, gwo, abc.
-    #[arg(long = "algo", default_value = "dls-smpso")]
-    pub algorithm: Algorithm,
-    /// Encoding (default: the algorithm's paper pairing): spherical, cartesian, angle.
+    /// Method: a preset (pso, apso, qpso, gwo, abc, spso, dls-smpso, dls-smpso-exemplar,
+    /// pso-uniform, apso-uniform) or optimizer/encoding/init (e.g. pso/spherical/line).
+    #[arg(long = "method", visible_alias = "algo", default_value = "dls-smpso")]
+    pub method: Method,
+    /// Replace the method's encoding: spherical, cartesian, angle.
     #[arg(long)]
     pub encoding: Option<EncodingKind>,
+    /// Replace the method's initialisation: uniform, line.
+    #[arg(long)]
+    pub init: Option<InitKind>,
     /// Seed of the run (default: the scenario's `planning.seed`).
     #[arg(long)]
     pub seed: Option<u64>,
@@ -59,15 +66,15 @@ pub struct SettingsArgs {
     /// Evaluation budget per run (fair comparisons); with --iterations, whichever ends first.
     #[arg(long)]
     pub evaluations: Option<u64>,
-    /// Algorithm parameters as TOML (sections pso, apso, spso, dls_smpso, qpso, gwo, abc).
+    /// Optimizer parameters as TOML (sections pso, dls_smpso, dls_exemplar, qpso, gwo, abc).
     #[arg(long)]
     pub params: Option<PathBuf>,
 }
 
 /// Algorithm parameters from a TOML file, then the population flag.
-pub fn load_params(path: Option<&PathBuf>, population: Option<usize>) -> Result<AlgorithmParams> {
+pub fn load_params(path: Option<&PathBuf>, population: Option<usize>) -> Result<OptimizerParams> {
     let mut params = match path {
-        None => AlgorithmParams::default(),
+        None => OptimizerParams::default(),
         Some(p) => {
             let text = std::fs::read_to_string(p)
                 .with_context(|| format!("{}: cannot read", p.display()))?;
@@ -117,22 +124,24 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     let world = super::load_world(&args.scenario)?;
     let params = load_params(args.settings.params.as_ref(), args.settings.population)?;
     let req = RunRequest {
-        algorithm: args.algorithm,
-        encoding: args.encoding,
+        method: args.method.with(args.encoding, args.init),
         params,
         budget: budget(args.settings.iterations, args.settings.evaluations)?,
         seed: args.seed.unwrap_or(world.spec.planning.seed),
     };
     if !args.json {
         eprintln!(
-            "planning {} with {} (seed {}, {} iterations max, population {})",
+            "planning {} with {} ({} on the {} encoding, {} init; seed {}, {} iterations max, population {})",
             world.spec.name,
-            req.algorithm,
+            req.method,
+            req.method.optimizer,
+            req.method.encoding,
+            req.method.init,
             req.seed,
             req.budget
                 .max_iterations()
                 .map_or("no".into(), |m| m.to_string()),
-            req.params.population(req.algorithm)
+            req.params.population(req.method.optimizer)
         );
     }
     let (result, uav_trace) = run_with_uav_trace(&world, &req);
@@ -172,24 +181,13 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     csv.flush()?;
 
     let a = &result.assessment;
-    let mut obj = assessment_json(a);
-    let o = obj
-        .as_object_mut()
-        .expect("assessment_json returns an object");
-    o.insert("scenario".into(), world.spec.name.clone().into());
-    o.insert("algorithm".into(), result.algorithm.name().into());
-    o.insert("encoding".into(), result.encoding.name().into());
-    o.insert("seed".into(), result.seed.into());
-    o.insert("evaluations".into(), result.outcome.evaluations.into());
-    o.insert("iterations".into(), result.outcome.iterations.into());
-    o.insert("seconds".into(), json_number(result.seconds));
-    o.insert("plan".into(), serde_json::to_value(&pf)?);
-    o.insert(
-        "files".into(),
-        serde_json::json!({"plan": plan_path, "convergence": conv_path}),
-    );
+    let mut files = ArtifactFiles {
+        plan: plan_path.display().to_string(),
+        convergence: conv_path.display().to_string(),
+        exports: Vec::new(),
+    };
     if let Some(formats) = &args.export {
-        let files = super::export::export_planned(
+        files.exports = super::export::export_planned(
             &args.scenario.scenario,
             args.scenario.terrain.as_deref(),
             &world,
@@ -197,11 +195,14 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             formats,
             args.origin.as_deref(),
             &args.out,
-        )?;
-        o.insert("exports".into(), serde_json::json!(files));
+        )?
+        .iter()
+        .map(|p| p.display().to_string())
+        .collect();
     }
+    let artifact = RunArtifact::new(&world, &result, req.budget, req.params, files);
     let run_path = args.out.join("run.json");
-    std::fs::write(&run_path, serde_json::to_string_pretty(&obj)? + "\n")
+    std::fs::write(&run_path, serde_json::to_string_pretty(&artifact)? + "\n")
         .with_context(|| format!("{}: cannot write", run_path.display()))?;
     let scenario_path = args.out.join("scenario.toml");
     let mut written_spec = world.spec.clone();
@@ -214,10 +215,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     std::fs::write(&scenario_path, to_toml(&written_spec))
         .with_context(|| format!("{}: cannot write", scenario_path.display()))?;
     let trace: Vec<f64> = result.outcome.trace.iter().map(|r| r.best_cost).collect();
-    let title = format!(
-        "{} - {} - seed {}",
-        world.spec.name, result.algorithm, result.seed
-    );
+    let title = super::plot::plan_title(&world.spec.name, &artifact);
     let figures = if args.no_figures {
         Vec::new()
     } else {
@@ -231,13 +229,15 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         )?
     };
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&obj)?);
+        println!("{}", serde_json::to_string_pretty(&artifact)?);
     } else {
         print!("{}", render::assessment(&world, a));
         println!(
-            "\nalgorithm {} on {} encoding, seed {}: {} evaluations, {} iterations, {:.3} s",
-            result.algorithm,
-            result.encoding,
+            "\nmethod {} ({} on the {} encoding, {} init), seed {}: {} evaluations, {} iterations, {:.3} s",
+            result.method,
+            result.method.optimizer,
+            result.method.encoding,
+            result.method.init,
             result.seed,
             result.outcome.evaluations,
             result.outcome.iterations,

@@ -11,7 +11,8 @@ use swarmplan_core::plan::Plan;
 use swarmplan_core::world::World;
 use swarmplan_experiment::record::RunRecord;
 use swarmplan_experiment::store::read_records;
-use swarmplan_io::plan_file::read_plan;
+use swarmplan_io::artifact::RunArtifact;
+use swarmplan_io::plan_file::{read_plan, Provenance};
 use swarmplan_io::scenario::{build_world, load_spec};
 
 #[derive(Debug, Args)]
@@ -107,6 +108,12 @@ fn read_trace(path: &Path) -> Result<(Vec<f64>, Vec<Vec<f64>>)> {
     Ok((total, per_uav))
 }
 
+/// The title of a plan's figures: scenario, method and seed.
+#[must_use]
+pub fn plan_title(scenario: &str, run: &RunArtifact) -> String {
+    format!("{scenario} - {} - seed {}", run.method, run.seed)
+}
+
 pub fn run(args: &PlotArgs) -> Result<()> {
     let dir = &args.dir;
     let files = if dir.join("plan.json").exists() {
@@ -118,19 +125,14 @@ pub fn run(args: &PlotArgs) -> Result<()> {
             dir.display()
         );
         let world = build_world(&load_spec(&scenario.display().to_string())?, None)?;
-        let plan = read_plan(&dir.join("plan.json"), &world)?;
+        let plan = read_plan(&dir.join("plan.json"), &world, Provenance::MustMatch)?;
         let (trace, per_uav) = read_trace(&dir.join("convergence.csv"))?;
-        let title = match std::fs::read_to_string(dir.join("run.json")) {
-            Ok(t) => {
-                let v: serde_json::Value = serde_json::from_str(&t).unwrap_or_default();
-                format!(
-                    "{} - {} - seed {}",
-                    world.spec.name,
-                    v["algorithm"].as_str().unwrap_or("?"),
-                    v["seed"]
-                )
-            }
-            Err(_) => world.spec.name.clone(),
+        let run_json = dir.join("run.json");
+        let title = if run_json.exists() {
+            let run = RunArtifact::read(&run_json)?;
+            plan_title(&world.spec.name, &run)
+        } else {
+            world.spec.name.clone()
         };
         plan_figures(dir, &world, &plan, &trace, &per_uav, &title)?
     } else if dir.join("runs.jsonl").exists() {

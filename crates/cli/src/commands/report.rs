@@ -5,7 +5,8 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use clap::Args;
 use swarmplan_core::cost::assess;
-use swarmplan_io::plan_file::read_plan;
+use swarmplan_io::artifact::RunArtifact;
+use swarmplan_io::plan_file::{read_plan, Provenance};
 use swarmplan_io::scenario::{build_world, load_spec};
 
 use crate::report::{bench_report, plan_report};
@@ -34,21 +35,13 @@ pub fn run(args: &ReportArgs) -> Result<()> {
             );
         };
         let world = build_world(&loaded, None)?;
-        let plan = read_plan(&dir.join("plan.json"), &world)?;
+        let plan = read_plan(&dir.join("plan.json"), &world, Provenance::MustMatch)?;
         let a = assess(&world, &plan, true);
-        let subtitle = match std::fs::read_to_string(dir.join("run.json")) {
-            Ok(text) => {
-                let v: serde_json::Value = serde_json::from_str(&text)
-                    .with_context(|| format!("{}: not JSON", dir.join("run.json").display()))?;
-                format!(
-                    "algorithm {} on the {} encoding, seed {}, {} evaluations",
-                    v["algorithm"].as_str().unwrap_or("?"),
-                    v["encoding"].as_str().unwrap_or("?"),
-                    v["seed"],
-                    v["evaluations"]
-                )
-            }
-            Err(_) => "plan loaded from plan.json".into(),
+        let run_json = dir.join("run.json");
+        let subtitle = if run_json.exists() {
+            RunArtifact::read(&run_json)?.describe()
+        } else {
+            "plan loaded from plan.json".into()
         };
         plan_report(dir, &world, &plan, &a, &subtitle)?
     } else if dir.join("summary.md").exists() {

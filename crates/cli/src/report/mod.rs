@@ -7,7 +7,7 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 use serde_json::json;
-use swarmplan_core::cost::{Assessment, Terms};
+use swarmplan_core::cost::Assessment;
 use swarmplan_core::plan::Plan;
 use swarmplan_core::timing::TimedPlan;
 use swarmplan_core::world::World;
@@ -134,8 +134,8 @@ fn assessment_tables(a: &Assessment) -> String {
         );
     }
     s.push_str("</table>\n<h2>Cost breakdown</h2>\n<table>\n<tr><th>term</th><th>weighted, all UAVs</th></tr>\n");
-    for (name, v) in Terms::NAMES.iter().zip(a.term_totals().values()) {
-        let _ = writeln!(s, "<tr><td>{name}</td><td>{v:.2}</td></tr>");
+    for (term, v) in a.term_totals().iter() {
+        let _ = writeln!(s, "<tr><td>{}</td><td>{v:.2}</td></tr>", term.name());
     }
     let _ = writeln!(
         s,

@@ -17,6 +17,9 @@ pub mod kinematics;
 pub mod proximity;
 pub mod safety;
 pub mod spso;
+pub mod term;
+
+pub use term::{TermId, Terms, TERM_COUNT};
 
 use serde::{Deserialize, Serialize};
 
@@ -25,86 +28,6 @@ use crate::plan::Plan;
 use crate::timing::TimedPlan;
 use crate::world::spec::ObjectivePreset;
 use crate::world::World;
-
-/// The terms of one UAV (unweighted in [`UavReport::raw`], weighted in [`UavReport::weighted`]).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
-pub struct Terms {
-    /// SPSO J1: path length with absolute altitudes (m).
-    pub length: f64,
-    /// SPSO J2: threat danger band (m).
-    pub threat: f64,
-    /// SPSO J3: altitude deviation from the band centre (m).
-    pub altitude: f64,
-    /// SPSO J4: smoothness (deg).
-    pub smoothness: f64,
-    /// Eq. 4: speed and payload indicators (count).
-    pub safety: f64,
-    /// Eq. 5: length + alpha |dz| + beta |d heading|.
-    pub energy: f64,
-    /// Communication: outage cost (metres-equivalent).
-    pub communication: f64,
-    /// Eq. 7: sum of squared heading changes (rad^2).
-    pub turning: f64,
-    /// Eq. 8 at equal times (1/m^2 per second, plus per waypoint for threats).
-    pub obstacle: f64,
-}
-
-impl Terms {
-    /// Names in report order, for tables and JSON.
-    pub const NAMES: [&'static str; 9] = [
-        "length",
-        "threat",
-        "altitude",
-        "smoothness",
-        "safety",
-        "energy",
-        "communication",
-        "turning",
-        "obstacle",
-    ];
-
-    #[must_use]
-    pub fn values(&self) -> [f64; 9] {
-        [
-            self.length,
-            self.threat,
-            self.altitude,
-            self.smoothness,
-            self.safety,
-            self.energy,
-            self.communication,
-            self.turning,
-            self.obstacle,
-        ]
-    }
-
-    #[must_use]
-    pub fn sum(&self) -> f64 {
-        self.values().iter().sum()
-    }
-
-    /// Applies the objective's weights (the cooperative ones are 0 under `spso`).
-    #[must_use]
-    pub fn weighted(&self, world: &World) -> Self {
-        let o = &world.spec.objective;
-        let coop = if o.preset == ObjectivePreset::Spso {
-            0.0
-        } else {
-            1.0
-        };
-        Self {
-            length: o.length * self.length,
-            threat: o.threat * self.threat,
-            altitude: o.altitude * self.altitude,
-            smoothness: o.smoothness * self.smoothness,
-            safety: coop * o.safety * self.safety,
-            energy: coop * o.energy * self.energy,
-            communication: coop * o.communication * self.communication,
-            turning: coop * o.turning * self.turning,
-            obstacle: coop * o.obstacle * self.obstacle,
-        }
-    }
-}
 
 /// What a report says about one UAV.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
@@ -157,16 +80,7 @@ impl Assessment {
     pub fn term_totals(&self) -> Terms {
         let mut t = Terms::default();
         for u in &self.per_uav {
-            let w = &u.weighted;
-            t.length += w.length;
-            t.threat += w.threat;
-            t.altitude += w.altitude;
-            t.smoothness += w.smoothness;
-            t.safety += w.safety;
-            t.energy += w.energy;
-            t.communication += w.communication;
-            t.turning += w.turning;
-            t.obstacle += w.obstacle;
+            t.add(&u.weighted);
         }
         t
     }
@@ -254,18 +168,17 @@ pub fn assess_into(
         let safety = safety::safety_term(world, u, tp, sink);
         let joules = energy::physical_energy(world, u, tp, &kin);
         let battery_ratio = energy::check_battery(world, u, joules, sink);
-        let raw = Terms {
-            length: spso_terms.length,
-            threat: spso_terms.threat,
-            altitude: spso_terms.altitude,
-            smoothness: spso_terms.smoothness,
-            safety,
-            energy: energy::energy_term(world, tp, &kin),
-            communication: scratch.comm_out[u].cost,
-            turning: kin.turn_sq,
-            obstacle: scratch.prox_out[u],
-        };
-        let weighted = raw.weighted(world);
+        let mut raw = Terms::default();
+        raw[TermId::Length] = spso_terms.length;
+        raw[TermId::Threat] = spso_terms.threat;
+        raw[TermId::Altitude] = spso_terms.altitude;
+        raw[TermId::Smoothness] = spso_terms.smoothness;
+        raw[TermId::Safety] = safety;
+        raw[TermId::Energy] = energy::energy_term(world, tp, &kin);
+        raw[TermId::Communication] = scratch.comm_out[u].cost;
+        raw[TermId::Turning] = kin.turn_sq;
+        raw[TermId::Obstacle] = scratch.prox_out[u];
+        let weighted = raw.weighted(&world.spec.objective);
         let cost = weighted.sum();
         terms_cost += cost;
         scratch.reports[u] = UavReport {

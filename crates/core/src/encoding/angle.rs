@@ -28,6 +28,15 @@ impl Angle {
     }
 }
 
+/// The phase whose coordinate is `v` (the inverse of [`map`] on [-pi/2, pi/2]).
+fn unmap(v: f64, r: [f64; 2]) -> f64 {
+    let half = 0.5 * (r[1] - r[0]);
+    if half <= 0.0 {
+        return 0.0;
+    }
+    ((v - 0.5 * (r[0] + r[1])) / half).clamp(-1.0, 1.0).asin()
+}
+
 fn map(theta: f64, r: [f64; 2]) -> f64 {
     let v = 0.5 * (r[0] + r[1]) + 0.5 * (r[1] - r[0]) * theta.sin();
     v.clamp(r[0], r[1])
@@ -50,6 +59,23 @@ impl PathEncoding for Angle {
                 w.y = map(b[n + k], f.y);
                 w.z = map(b[2 * n + k], f.z);
             }
+        }
+    }
+
+    fn encode_into(&self, plan: &Plan, out: &mut [f64]) {
+        let f = &self.frame;
+        let n = f.n;
+        for (i, path) in plan.uavs.iter().enumerate() {
+            let b = &mut out[3 * n * i..3 * n * (i + 1)];
+            for k in 0..n {
+                let w = path.waypoints[k + 1];
+                b[k] = unmap(w.x, f.x);
+                b[n + k] = unmap(w.y, f.y);
+                b[2 * n + k] = unmap(w.z, f.z);
+            }
+        }
+        for (v, bound) in out.iter_mut().zip(&self.bounds) {
+            *v = bound.project(*v);
         }
     }
 }

@@ -44,4 +44,20 @@ impl PathEncoding for Cartesian {
             }
         }
     }
+
+    fn encode_into(&self, plan: &Plan, out: &mut [f64]) {
+        let n = self.frame.n;
+        for (i, path) in plan.uavs.iter().enumerate() {
+            let b = &mut out[3 * n * i..3 * n * (i + 1)];
+            for k in 0..n {
+                let w = path.waypoints[k + 1];
+                b[k] = w.x;
+                b[n + k] = w.y;
+                b[2 * n + k] = w.z;
+            }
+        }
+        for (v, bound) in out.iter_mut().zip(&self.bounds) {
+            *v = bound.project(*v);
+        }
+    }
 }

@@ -7,7 +7,10 @@
 
 pub mod angle;
 pub mod cartesian;
+pub mod init;
 pub mod spherical;
+
+pub use init::InitKind;
 
 use std::fmt;
 use std::str::FromStr;
@@ -27,6 +30,11 @@ pub trait PathEncoding: Send + Sync {
     /// Decodes `x` into `plan`, reusing its buffers.
     fn decode_into(&self, x: &[f64], plan: &mut Plan);
 
+    /// The decision vector whose decoding is nearest to `plan` (exact where `plan` is
+    /// inside what the encoding can express; otherwise each value is clamped into its
+    /// bound). Used to start a search from given plans.
+    fn encode_into(&self, plan: &Plan, out: &mut [f64]);
+
     /// Decodes `x` into a new plan.
     fn decode(&self, x: &[f64]) -> Plan {
         let mut p = Plan::default();
@@ -36,7 +44,7 @@ pub trait PathEncoding: Send + Sync {
 }
 
 /// The encodings on offer.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum EncodingKind {
     /// Spherical motion vectors (SPSO, DLS-SMPSO).
@@ -137,5 +145,116 @@ pub fn build(kind: EncodingKind, world: &World) -> Box<dyn PathEncoding> {
         )),
         EncodingKind::Cartesian => Box::new(cartesian::Cartesian::new(frame)),
         EncodingKind::Angle => Box::new(angle::Angle::new(frame, false)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::rng_from_seed;
+
+    fn frame() -> Frame {
+        Frame {
+            starts: vec![
+                DVec3::new(100.0, 80.0, 150.0),
+                DVec3::new(120.0, 60.0, 150.0),
+            ],
+            goal: DVec3::new(800.0, 700.0, 150.0),
+            x: [0.0, 1000.0],
+            y: [0.0, 900.0],
+            z: [100.0, 200.0],
+            n: 6,
+        }
+    }
+
+    fn encodings() -> Vec<(&'static str, Box<dyn PathEncoding>)> {
+        vec![
+            ("cartesian", Box::new(cartesian::Cartesian::new(frame()))),
+            ("angle", Box::new(angle::Angle::new(frame(), false))),
+            (
+                "spherical",
+                Box::new(spherical::Spherical::new(
+                    frame(),
+                    spherical::AngleConvention::Consistent,
+                )),
+            ),
+            (
+                "spherical-spso",
+                Box::new(spherical::Spherical::new(
+                    frame(),
+                    spherical::AngleConvention::Spso,
+                )),
+            ),
+        ]
+    }
+
+    #[test]
+    fn encoding_a_decoded_plan_decodes_to_the_same_plan() {
+        // Exact where the plan is expressible: a spherical decode that hit the box (a
+        // clamped waypoint) may need a heading outside its bound to be re-encoded.
+        let f = frame();
+        let on_box = |w: &DVec3| {
+            [w.x, w.y, w.z]
+                .iter()
+                .zip([f.x, f.y, f.z])
+                .any(|(v, r)| *v == r[0] || *v == r[1])
+        };
+        let mut rng = rng_from_seed(8);
+        for (name, enc) in encodings() {
+            let mut x = vec![0.0; enc.bounds().len()];
+            let mut y = x.clone();
+            let mut checked = 0;
+            for _ in 0..400 {
+                crate::problem::fill_uniform(enc.bounds(), &mut rng, &mut x);
+                if name.starts_with("spherical") {
+                    // Short, nearly level motions, which rarely reach the box.
+                    for (k, v) in x.iter_mut().enumerate() {
+                        match (k % (3 * f.n)) / f.n {
+                            0 => *v *= 0.3,
+                            1 => *v *= 0.1,
+                            _ => {}
+                        }
+                    }
+                }
+                let plan = enc.decode(&x);
+                let clamped = plan
+                    .uavs
+                    .iter()
+                    .any(|p| p.waypoints[1..=f.n].iter().any(on_box));
+                if name.starts_with("spherical") && clamped {
+                    continue;
+                }
+                checked += 1;
+                enc.encode_into(&plan, &mut y);
+                assert!(
+                    y.iter().zip(enc.bounds()).all(|(v, b)| b.contains(*v)),
+                    "{name}: encoded outside the bounds"
+                );
+                let again = enc.decode(&y);
+                for (p, q) in plan.uavs.iter().zip(&again.uavs) {
+                    for (a, b) in p.waypoints.iter().zip(&q.waypoints) {
+                        assert!(a.distance(*b) < 1e-6, "{name}: {a} vs {b}");
+                    }
+                }
+            }
+            assert!(checked >= 40, "{name}: only {checked} expressible samples");
+        }
+    }
+
+    #[test]
+    fn line_plans_encode_inside_the_bounds_of_every_encoding() {
+        let mut rng = rng_from_seed(9);
+        let mut plan = Plan::default();
+        for (name, enc) in encodings() {
+            let mut x = vec![0.0; enc.bounds().len()];
+            for _ in 0..50 {
+                init::sample_line_plan(&frame(), &mut rng, &mut plan);
+                enc.encode_into(&plan, &mut x);
+                assert!(
+                    x.iter().zip(enc.bounds()).all(|(v, b)| b.contains(*v)),
+                    "{name}"
+                );
+            }
+        }
     }
 }

@@ -82,4 +82,45 @@ impl PathEncoding for Spherical {
             }
         }
     }
+
+    /// Segment by segment from the *decoded* previous waypoint, so clamping of one motion
+    /// does not shift all later ones.
+    fn encode_into(&self, plan: &Plan, out: &mut [f64]) {
+        let f = &self.frame;
+        let n = f.n;
+        for (i, path) in plan.uavs.iter().enumerate() {
+            let base = 3 * n * i;
+            let mut p = path.waypoints[0];
+            for k in 0..n {
+                let d = path.waypoints[k + 1] - p;
+                let horizontal = d.truncate().length();
+                let phi_raw = match self.convention {
+                    AngleConvention::Consistent => d.y.atan2(d.x),
+                    AngleConvention::Spso => d.x.atan2(d.y),
+                };
+                let rb = self.bounds[base + k];
+                let psib = self.bounds[base + n + k];
+                let phib = self.bounds[base + 2 * n + k];
+                // Bring the heading to the branch nearest the bound's centre before clamping.
+                let centre = 0.5 * (phib.lo + phib.hi);
+                let phi_near = centre
+                    + (phi_raw - centre + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+                    - std::f64::consts::PI;
+                let r = rb.project(d.length());
+                let psi = psib.project(d.z.atan2(horizontal));
+                let phi = phib.project(phi_near);
+                out[base + k] = r;
+                out[base + n + k] = psi;
+                out[base + 2 * n + k] = phi;
+                let h = r * psi.cos();
+                let (ux, uy) = match self.convention {
+                    AngleConvention::Consistent => (phi.cos(), phi.sin()),
+                    AngleConvention::Spso => (phi.sin(), phi.cos()),
+                };
+                p.x = (p.x + h * ux).clamp(f.x[0], f.x[1]);
+                p.y = (p.y + h * uy).clamp(f.y[0], f.y[1]);
+                p.z = (p.z + r * psi.sin()).clamp(f.z[0], f.z[1]);
+            }
+        }
+    }
 }

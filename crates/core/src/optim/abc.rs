@@ -27,7 +27,7 @@ use rand::Rng as _;
 use serde::{Deserialize, Serialize};
 
 use super::params::{check, ParamsError};
-use super::swarm::{fill_uniform, into_bound, row, row_mut, BestSoFar};
+use super::swarm::{into_bound, row, row_mut, BestSoFar};
 use super::{Evaluator, Optimizer};
 use crate::problem::Evaluation;
 use crate::rng::Rng;
@@ -191,7 +191,7 @@ impl Abc {
         if t <= self.params.limit {
             return;
         }
-        fill_uniform(ev.bounds(), rng, &mut self.scratch);
+        ev.sample_initial(rng, &mut self.scratch);
         let Some(e) = ev.evaluate(&self.scratch) else {
             return;
         };
@@ -208,7 +208,7 @@ impl Optimizer for Abc {
         2 * self.sn as u64
     }
 
-    fn init(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng, _planned_iterations: usize) {
+    fn init(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng) {
         let bounds = ev.bounds();
         let (sn, dim) = (self.sn, bounds.len());
         self.dim = dim;
@@ -221,7 +221,7 @@ impl Optimizer for Abc {
         self.scouts = 0;
         for i in 0..sn {
             let x = row_mut(&mut self.x, i, dim);
-            fill_uniform(bounds, rng, x);
+            ev.sample_initial(rng, x);
             let e = ev.evaluate(x).unwrap_or(Evaluation::worst());
             self.eval[i] = e;
             self.best.offer(row(&self.x, i, dim), e);

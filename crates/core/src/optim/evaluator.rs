@@ -6,7 +6,9 @@
 //! once the budget is spent the evaluator refuses, returning `None` without evaluating or
 //! counting, and remembers that it refused so the loop can stop with the right reason.
 
+use super::progress::Progress;
 use crate::problem::{Bound, Evaluation, Problem};
+use crate::rng::Rng;
 
 /// Counts evaluations of one problem and refuses them past an optional budget.
 pub struct Evaluator<'a> {
@@ -15,6 +17,8 @@ pub struct Evaluator<'a> {
     count: u64,
     limit: Option<u64>,
     exhausted: bool,
+    iteration: u64,
+    max_iterations: Option<u64>,
 }
 
 impl<'a> Evaluator<'a> {
@@ -27,7 +31,28 @@ impl<'a> Evaluator<'a> {
             count: 0,
             limit,
             exhausted: false,
+            iteration: 0,
+            max_iterations: None,
         }
+    }
+
+    /// Tells the evaluator which step the run is at (set by the solve loop before every
+    /// step), so [`Evaluator::progress`] can serve schedules.
+    pub(crate) fn set_iteration(&mut self, iteration: u64, max_iterations: Option<u64>) {
+        self.iteration = iteration;
+        self.max_iterations = max_iterations;
+    }
+
+    /// How far the run is through its budget (steps completed, or evaluations spent).
+    #[must_use]
+    pub fn progress(&self) -> Progress {
+        Progress::of(self.iteration, self.max_iterations, self.count, self.limit)
+    }
+
+    /// Draws a starting point by the problem's initialisation (not an evaluation: nothing
+    /// is counted).
+    pub fn sample_initial(&self, rng: &mut Rng, out: &mut [f64]) {
+        self.problem.sample_initial(rng, out);
     }
 
     /// The bounds of the problem (borrowed from the problem, not from the evaluator, so an

@@ -1,7 +1,8 @@
 //! Grey wolf optimizer (Mirjalili, Mirjalili, Lewis 2014, Adv. Eng. Softw. 69:46-61).
 //!
-//! The pack follows its three leaders alpha, beta, delta. At step t (0-based) of T planned,
-//! a = 2 - 2 t / T; each wolf X moves, for every dimension j, to
+//! The pack follows its three leaders alpha, beta, delta. At step t (0-based) of T,
+//! a = 2 - 2 t / T (T: the budget; under an evaluation budget t / T is the share of
+//! evaluations spent, [`super::Progress::fraction`]); each wolf X moves, for every dimension j, to
 //!
 //! ```text
 //! for L in {alpha, beta, delta}:  A = 2 a r1 - a,  C = 2 r2,
@@ -20,7 +21,7 @@ use rand::Rng as _;
 use serde::{Deserialize, Serialize};
 
 use super::params::{check, ParamsError};
-use super::swarm::{fill_uniform, into_bound, row, row_mut};
+use super::swarm::{into_bound, row, row_mut};
 use super::{Evaluator, Optimizer};
 use crate::problem::Evaluation;
 use crate::rng::Rng;
@@ -106,8 +107,6 @@ pub struct Gwo {
     dim: usize,
     x: Vec<f64>,
     leaders: Leaders,
-    t: usize,
-    planned: usize,
 }
 
 impl Gwo {
@@ -119,8 +118,6 @@ impl Gwo {
             dim: 0,
             x: Vec::new(),
             leaders: Leaders::new(0),
-            t: 0,
-            planned: 1,
         }
     }
 
@@ -129,11 +126,10 @@ impl Gwo {
         &self.params
     }
 
-    /// a = 2 - 2 t / T at step `t` of `planned` (never below 0).
+    /// a = 2 - 2 t / T at budget fraction `frac = t / T` ([`Progress::fraction`]), never
+    /// below 0.
     #[must_use]
-    pub fn a(t: usize, planned: usize) -> f64 {
-        #[allow(clippy::cast_precision_loss)] // iteration counts are far below 2^52
-        let frac = t as f64 / planned.max(1) as f64;
+    pub fn a(frac: f64) -> f64 {
         (2.0 - 2.0 * frac).max(0.0)
     }
 
@@ -152,17 +148,15 @@ impl Optimizer for Gwo {
         self.n as u64
     }
 
-    fn init(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng, planned_iterations: usize) {
+    fn init(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng) {
         let bounds = ev.bounds();
         let dim = bounds.len();
         self.dim = dim;
         self.x = vec![0.0; self.n * dim];
         self.leaders = Leaders::new(dim);
-        self.t = 0;
-        self.planned = planned_iterations.max(1);
         for i in 0..self.n {
             let x = row_mut(&mut self.x, i, dim);
-            fill_uniform(bounds, rng, x);
+            ev.sample_initial(rng, x);
             if let Some(e) = ev.evaluate(x) {
                 self.leaders.offer(x, e);
             }
@@ -175,8 +169,7 @@ impl Optimizer for Gwo {
         }
         let bounds = ev.bounds();
         let dim = self.dim;
-        let a = Self::a(self.t, self.planned);
-        self.t += 1;
+        let a = Self::a(ev.progress().fraction());
         let leaders = [
             self.leaders.get(0),
             self.leaders.get(1),
@@ -243,9 +236,9 @@ mod tests {
 
     #[test]
     fn a_decreases_linearly_to_zero() {
-        assert_eq!(Gwo::a(0, 200), 2.0);
-        assert_eq!(Gwo::a(100, 200), 1.0);
-        assert_eq!(Gwo::a(200, 200), 0.0);
-        assert_eq!(Gwo::a(300, 200), 0.0);
+        assert_eq!(Gwo::a(0.0), 2.0);
+        assert_eq!(Gwo::a(0.5), 1.0);
+        assert_eq!(Gwo::a(1.0), 0.0);
+        assert_eq!(Gwo::a(1.5), 0.0);
     }
 }

@@ -1,6 +1,6 @@
-//! Which algorithm to run and with which parameters.
+//! The registry of optimizers and their parameters.
 //!
-//! [`AlgorithmParams`] holds one section per algorithm, so a single file (or CLI default)
+//! [`OptimizerParams`] holds one section per optimizer, so a single file (or CLI default)
 //! configures a whole comparison. Every section's `DEFAULT` constant is the paper's setting
 //! and feeds `Default` and serde's defaults alike. [`AlgorithmParams::validate`] runs once,
 //! up front, so the optimizers' hot paths can stay infallible; [`build`] then makes the
@@ -13,7 +13,8 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 use super::abc::{Abc, AbcParams};
-use super::dls::{DlsParams, DlsSmpso};
+use super::dls_exemplar::{DlsExemplar, DlsExemplarParams};
+use super::dls_paper::{DlsPaper, DlsPaperParams};
 use super::gwo::{Gwo, GwoParams};
 use super::pso::{Pso, PsoParams};
 use super::qpso::{Qpso, QpsoParams};
@@ -55,25 +56,27 @@ pub(crate) fn check(
     }
 }
 
-/// The optimizers of the comparison (serde and CLI names in kebab-case).
+/// The optimizers, one file each. Adding one is a variant here, its parameter section in
+/// [`OptimizerParams`] and a line in each `match` below.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
-pub enum Algorithm {
+pub enum OptimizerKind {
+    /// Inertia-weight PSO with SPSO's clamping and mirroring ([`super::pso`]).
     Pso,
-    Apso,
-    Spso,
-    DlsSmpso,
+    /// DLS-SMPSO as the paper defines it ([`super::dls_paper`]).
+    DlsPaper,
+    /// DLS-SMPSO with Xu et al.'s exemplars ([`super::dls_exemplar`]).
+    DlsExemplar,
     Qpso,
     Gwo,
     Abc,
 }
 
-impl Algorithm {
-    pub const ALL: [Self; 7] = [
+impl OptimizerKind {
+    pub const ALL: [Self; 6] = [
         Self::Pso,
-        Self::Apso,
-        Self::Spso,
-        Self::DlsSmpso,
+        Self::DlsPaper,
+        Self::DlsExemplar,
         Self::Qpso,
         Self::Gwo,
         Self::Abc,
@@ -83,9 +86,8 @@ impl Algorithm {
     pub const fn name(self) -> &'static str {
         match self {
             Self::Pso => "pso",
-            Self::Apso => "apso",
-            Self::Spso => "spso",
-            Self::DlsSmpso => "dls-smpso",
+            Self::DlsPaper => "dls-paper",
+            Self::DlsExemplar => "dls-exemplar",
             Self::Qpso => "qpso",
             Self::Gwo => "gwo",
             Self::Abc => "abc",
@@ -93,50 +95,48 @@ impl Algorithm {
     }
 }
 
-impl fmt::Display for Algorithm {
+impl fmt::Display for OptimizerKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
     }
 }
 
-/// An algorithm name that is not one of [`Algorithm::ALL`].
+/// An optimizer name that is not one of [`OptimizerKind::ALL`].
 #[derive(Debug, Error, Clone, PartialEq, Eq)]
-#[error("unknown algorithm {0:?}; expected one of pso, apso, spso, dls-smpso, qpso, gwo, abc")]
-pub struct UnknownAlgorithm(pub String);
+#[error("unknown optimizer {0:?}; expected one of pso, dls-paper, dls-exemplar, qpso, gwo, abc")]
+pub struct UnknownOptimizer(pub String);
 
-impl FromStr for Algorithm {
-    type Err = UnknownAlgorithm;
+impl FromStr for OptimizerKind {
+    type Err = UnknownOptimizer;
 
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         Self::ALL
             .into_iter()
             .find(|a| a.name().eq_ignore_ascii_case(s))
-            .ok_or_else(|| UnknownAlgorithm(s.to_owned()))
+            .ok_or_else(|| UnknownOptimizer(s.to_owned()))
     }
 }
 
-/// Parameters of every algorithm; the default is the paper's setting for each.
+/// Parameters of every optimizer (a section each); the default is the paper's setting.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
-pub struct AlgorithmParams {
-    /// PSO on the cartesian encoding.
+pub struct OptimizerParams {
+    /// PSO on whatever encoding the method names (PSO, APSO and SPSO share it).
     pub pso: PsoParams,
-    /// APSO (theta-PSO): PSO on the angle encoding.
-    pub apso: PsoParams,
-    /// SPSO: PSO on the spherical motion encoding.
-    pub spso: PsoParams,
-    pub dls_smpso: DlsParams,
+    /// DLS-SMPSO, paper mode.
+    pub dls_smpso: DlsPaperParams,
+    /// DLS-SMPSO, exemplar mode.
+    pub dls_exemplar: DlsExemplarParams,
     pub qpso: QpsoParams,
     pub gwo: GwoParams,
     pub abc: AbcParams,
 }
 
-impl AlgorithmParams {
+impl OptimizerParams {
     pub const DEFAULT: Self = Self {
         pso: PsoParams::DEFAULT,
-        apso: PsoParams::DEFAULT,
-        spso: PsoParams::DEFAULT,
-        dls_smpso: DlsParams::DEFAULT,
+        dls_smpso: DlsPaperParams::DEFAULT,
+        dls_exemplar: DlsExemplarParams::DEFAULT,
         qpso: QpsoParams::DEFAULT,
         gwo: GwoParams::DEFAULT,
         abc: AbcParams::DEFAULT,
@@ -145,131 +145,128 @@ impl AlgorithmParams {
     /// Checks every section; the error names the first bad field with its section.
     pub fn validate(&self) -> Result<(), ParamsError> {
         self.pso.validate().map_err(|e| e.within("pso"))?;
-        self.apso.validate().map_err(|e| e.within("apso"))?;
-        self.spso.validate().map_err(|e| e.within("spso"))?;
         self.dls_smpso
             .validate()
             .map_err(|e| e.within("dls_smpso"))?;
+        self.dls_exemplar
+            .validate()
+            .map_err(|e| e.within("dls_exemplar"))?;
         self.qpso.validate().map_err(|e| e.within("qpso"))?;
         self.gwo.validate().map_err(|e| e.within("gwo"))?;
         self.abc.validate().map_err(|e| e.within("abc"))
     }
 
-    /// The population size `alg` will use (for ABC: bees, twice the food sources).
+    /// The population size `kind` will use (for ABC: bees, twice the food sources).
     #[must_use]
-    pub fn population(&self, alg: Algorithm) -> usize {
-        match alg {
-            Algorithm::Pso => self.pso.population,
-            Algorithm::Apso => self.apso.population,
-            Algorithm::Spso => self.spso.population,
-            Algorithm::DlsSmpso => self.dls_smpso.pso.population,
-            Algorithm::Qpso => self.qpso.population,
-            Algorithm::Gwo => self.gwo.population,
-            Algorithm::Abc => self.abc.population,
+    pub fn population(&self, kind: OptimizerKind) -> usize {
+        match kind {
+            OptimizerKind::Pso => self.pso.population,
+            OptimizerKind::DlsPaper => self.dls_smpso.pso.population,
+            OptimizerKind::DlsExemplar => self.dls_exemplar.pso.population,
+            OptimizerKind::Qpso => self.qpso.population,
+            OptimizerKind::Gwo => self.gwo.population,
+            OptimizerKind::Abc => self.abc.population,
         }
     }
 
-    /// Sets the population size of every algorithm (e.g. the population-500 runs).
+    /// Sets the population size of every optimizer (e.g. the population-500 runs).
     pub fn set_population(&mut self, n: usize) {
         self.pso.population = n;
-        self.apso.population = n;
-        self.spso.population = n;
         self.dls_smpso.pso.population = n;
+        self.dls_exemplar.pso.population = n;
         self.qpso.population = n;
         self.gwo.population = n;
         self.abc.population = n;
     }
 }
 
-impl Default for AlgorithmParams {
+impl Default for OptimizerParams {
     fn default() -> Self {
         Self::DEFAULT
     }
 }
 
-/// Makes the optimizer for `alg`. `params` should have passed
-/// [`AlgorithmParams::validate`] (see [`try_build`]); out-of-range sizes are raised to the
-/// smallest workable value rather than panicking.
+/// Makes the optimizer `kind`. `params` should have passed [`OptimizerParams::validate`]
+/// (see [`try_build`]); out-of-range sizes are raised to the smallest workable value rather
+/// than panicking.
 #[must_use]
-pub fn build(alg: Algorithm, params: &AlgorithmParams) -> Box<dyn Optimizer> {
-    match alg {
-        Algorithm::Pso => Box::new(Pso::new(params.pso)),
-        Algorithm::Apso => Box::new(Pso::new(params.apso)),
-        Algorithm::Spso => Box::new(Pso::new(params.spso)),
-        Algorithm::DlsSmpso => Box::new(DlsSmpso::new(params.dls_smpso)),
-        Algorithm::Qpso => Box::new(Qpso::new(params.qpso)),
-        Algorithm::Gwo => Box::new(Gwo::new(params.gwo)),
-        Algorithm::Abc => Box::new(Abc::new(params.abc)),
+pub fn build(kind: OptimizerKind, params: &OptimizerParams) -> Box<dyn Optimizer> {
+    match kind {
+        OptimizerKind::Pso => Box::new(Pso::new(params.pso)),
+        OptimizerKind::DlsPaper => Box::new(DlsPaper::new(params.dls_smpso)),
+        OptimizerKind::DlsExemplar => Box::new(DlsExemplar::new(params.dls_exemplar)),
+        OptimizerKind::Qpso => Box::new(Qpso::new(params.qpso)),
+        OptimizerKind::Gwo => Box::new(Gwo::new(params.gwo)),
+        OptimizerKind::Abc => Box::new(Abc::new(params.abc)),
     }
 }
 
 /// Validates `params`, then [`build`]s.
 pub fn try_build(
-    alg: Algorithm,
-    params: &AlgorithmParams,
+    kind: OptimizerKind,
+    params: &OptimizerParams,
 ) -> Result<Box<dyn Optimizer>, ParamsError> {
     params.validate()?;
-    Ok(build(alg, params))
+    Ok(build(kind, params))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::optim::DlsMode;
 
     #[test]
-    fn algorithm_names_round_trip() {
-        for a in Algorithm::ALL {
-            assert_eq!(a.to_string().parse::<Algorithm>(), Ok(a));
+    fn optimizer_names_round_trip() {
+        for a in OptimizerKind::ALL {
+            assert_eq!(a.to_string().parse::<OptimizerKind>(), Ok(a));
             let json = serde_json::to_string(&a).expect("serialises");
             assert_eq!(json, format!("\"{a}\""));
         }
-        assert_eq!("DLS-SMPSO".parse::<Algorithm>(), Ok(Algorithm::DlsSmpso));
-        assert!("dls".parse::<Algorithm>().is_err());
+        assert_eq!(
+            "DLS-Paper".parse::<OptimizerKind>(),
+            Ok(OptimizerKind::DlsPaper)
+        );
+        assert!("dls".parse::<OptimizerKind>().is_err());
     }
 
     #[test]
     fn defaults_are_the_paper_settings_and_valid() {
-        let p = AlgorithmParams::default();
+        let p = OptimizerParams::default();
         p.validate().expect("defaults are valid");
-        for a in Algorithm::ALL {
+        for a in OptimizerKind::ALL {
             assert_eq!(p.population(a), 50);
         }
-        assert_eq!(p.spso.inertia, 1.0);
-        assert_eq!(p.spso.cognitive, 1.5);
-        assert_eq!(p.spso.social, 1.5);
-        assert_eq!(p.dls_smpso.mode, DlsMode::Paper);
+        assert_eq!(p.pso.inertia, 1.0);
+        assert_eq!(p.pso.cognitive, 1.5);
+        assert_eq!(p.pso.social, 1.5);
     }
 
     #[test]
     fn serde_fills_defaults_and_rejects_unknown_fields() {
-        let p: AlgorithmParams = serde_json::from_str(
-            r#"{"dls_smpso": {"mode": "exemplar", "pso": {"population": 20}}}"#,
-        )
-        .expect("parses");
-        assert_eq!(p.dls_smpso.mode, DlsMode::Exemplar);
-        assert_eq!(p.dls_smpso.pso.population, 20);
+        let p: OptimizerParams =
+            serde_json::from_str(r#"{"dls_exemplar": {"pso": {"population": 20}}}"#)
+                .expect("parses");
+        assert_eq!(p.dls_exemplar.pso.population, 20);
         assert_eq!(p.dls_smpso.lambda, 0.5);
         assert_eq!(p.gwo, GwoParams::DEFAULT);
-        assert!(serde_json::from_str::<AlgorithmParams>(r#"{"spso": {"inertai": 1}}"#).is_err());
-        assert!(serde_json::from_str::<AlgorithmParams>(r#"{"sps": {}}"#).is_err());
+        assert!(serde_json::from_str::<OptimizerParams>(r#"{"pso": {"inertai": 1}}"#).is_err());
+        assert!(serde_json::from_str::<OptimizerParams>(r#"{"sps": {}}"#).is_err());
     }
 
     #[test]
     fn validation_names_the_field() {
-        let mut p = AlgorithmParams::default();
+        let mut p = OptimizerParams::default();
         p.dls_smpso.pso.velocity_clamp = -1.0;
         let e = p.validate().expect_err("negative clamp");
         assert_eq!(e.field, "dls_smpso.pso.velocity_clamp");
         assert!(e
             .to_string()
             .starts_with("dls_smpso.pso.velocity_clamp: expected"));
-        let mut p = AlgorithmParams::default();
+        let mut p = OptimizerParams::default();
         p.abc.population = 3;
         assert_eq!(
             p.validate().expect_err("too few bees").field,
             "abc.population"
         );
-        assert!(try_build(Algorithm::Abc, &p).is_err());
+        assert!(try_build(OptimizerKind::Abc, &p).is_err());
     }
 }

@@ -9,8 +9,15 @@
 //! v_ij <- clamp(v_ij, -vmax_j, vmax_j),     vmax_j = velocity_clamp * (hi_j - lo_j)
 //! x_ij <- x_ij + v_ij
 //! if x_ij left [lo_j, hi_j]: v_ij <- -v_ij (mirror), x_ij <- clamp(x_ij)
-//! w <- w * inertia_damping                  (once per iteration)
+//! w  = w0 * inertia_damping^(K p)           (p: budget fraction spent, K = schedule_iterations)
 //! ```
+//!
+//! SPSO damps w by 0.98 after every iteration of its 200. Here that schedule is defined over
+//! the budget ([`super::Progress`]): w falls from w0 to w0 * 0.98^200 over whatever budget
+//! the run has, so a run given five times the budget keeps searching for five times longer
+//! instead of freezing at iteration 200. At 200 iterations (K = 200) the exponent is the
+//! integer number of steps done and w is the same product of factors as SPSO's, bit for bit;
+//! between integers (other budgets) the fractional part is applied with `powf`.
 //!
 //! Periodic bounds wrap instead of clamping and mirroring. Velocities start at zero (as in
 //! SPSO's code). pbest moves only on a strict improvement; with `asynchronous` gbest follows
@@ -27,8 +34,8 @@ use rand::Rng as _;
 use serde::{Deserialize, Serialize};
 
 use super::params::{check, ParamsError};
-use super::swarm::{fill_uniform, into_bound, row, row_mut, BestSoFar};
-use super::{Evaluator, Optimizer};
+use super::swarm::{into_bound, row, row_mut, BestSoFar};
+use super::{Evaluator, Optimizer, Progress};
 use crate::problem::{Bound, Evaluation};
 use crate::rng::Rng;
 
@@ -40,8 +47,11 @@ pub struct PsoParams {
     pub population: usize,
     /// Initial inertia weight w (1.0).
     pub inertia: f64,
-    /// Factor applied to w after every iteration, wdamp (0.98; 1 keeps w constant).
+    /// Factor applied to w per nominal iteration, wdamp (0.98; 1 keeps w constant).
     pub inertia_damping: f64,
+    /// Nominal iterations K over which the damping schedule is defined (200, SPSO's run):
+    /// w reaches w0 * wdamp^K at the end of the budget, whatever its size.
+    pub schedule_iterations: u64,
     /// Cognitive coefficient c1 (1.5).
     pub cognitive: f64,
     /// Social coefficient c2 (1.5).
@@ -62,6 +72,7 @@ impl PsoParams {
         population: 50,
         inertia: 1.0,
         inertia_damping: 0.98,
+        schedule_iterations: 200,
         cognitive: 1.5,
         social: 1.5,
         velocity_clamp: 0.5,
@@ -89,6 +100,12 @@ impl PsoParams {
             "inertia_damping",
             "a number in (0, 1]",
             self.inertia_damping,
+        )?;
+        check(
+            (1..=1_000_000).contains(&self.schedule_iterations),
+            "schedule_iterations",
+            "a whole number in [1, 1000000]",
+            self.schedule_iterations,
         )?;
         check(
             self.cognitive.is_finite() && self.cognitive >= 0.0,
@@ -131,6 +148,10 @@ pub(crate) struct Swarm {
     vmax: Vec<f64>,
     /// Current inertia weight.
     pub w: f64,
+    /// w0 times the damping factor once per whole nominal iteration elapsed so far.
+    w_whole: f64,
+    /// Whole nominal iterations already folded into `w_whole`.
+    whole_applied: u64,
 }
 
 impl Swarm {
@@ -160,20 +181,40 @@ impl Swarm {
                 })
                 .collect(),
             w: params.inertia,
+            w_whole: params.inertia,
+            whole_applied: 0,
         }
+    }
+
+    /// Sets the inertia weight for the step about to run from the budget fraction spent.
+    pub fn schedule(&mut self, progress: Progress) {
+        let k = self.params.schedule_iterations;
+        let elapsed = progress.elapsed_of(k).min(k as f64);
+        // Truncation is the floor: elapsed is finite and in [0, K].
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let whole = elapsed.floor() as u64;
+        while self.whole_applied < whole {
+            self.w_whole *= self.params.inertia_damping;
+            self.whole_applied += 1;
+        }
+        let part = elapsed - whole as f64;
+        self.w = if part == 0.0 {
+            self.w_whole
+        } else {
+            self.w_whole * self.params.inertia_damping.powf(part)
+        };
     }
 
     /// Draws and evaluates the initial swarm, re-drawing it while no particle has a finite
     /// cost (up to `initial_redraws` times). Particles the budget could not evaluate keep
     /// their position with the worst evaluation.
     pub fn initialize(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng) {
-        let bounds = ev.bounds();
         let dim = self.dim;
         for _draw in 0..=self.params.initial_redraws {
             self.gbest.clear();
             for i in 0..self.n {
                 let x = row_mut(&mut self.x, i, dim);
-                fill_uniform(bounds, rng, x);
+                ev.sample_initial(rng, x);
                 row_mut(&mut self.v, i, dim).fill(0.0);
                 let e = ev.evaluate(x).unwrap_or(Evaluation::worst());
                 row_mut(&mut self.pbest, i, dim).copy_from_slice(x);
@@ -249,15 +290,13 @@ impl Swarm {
             .offer(row(&self.pbest, i, self.dim), self.pbest_eval[i])
     }
 
-    /// End of an iteration (also when the budget cut it short): synchronous gbest update,
-    /// inertia damping.
+    /// End of an iteration (also when the budget cut it short): synchronous gbest update.
     pub fn end_iteration(&mut self) {
         if !self.params.asynchronous {
             for i in 0..self.n {
                 self.offer_pbest(i);
             }
         }
-        self.w *= self.params.inertia_damping;
     }
 }
 
@@ -280,7 +319,7 @@ impl Pso {
         &self.swarm.params
     }
 
-    /// The inertia weight the next step will use.
+    /// The inertia weight the last step used.
     #[must_use]
     pub fn inertia(&self) -> f64 {
         self.swarm.w
@@ -292,13 +331,14 @@ impl Optimizer for Pso {
         self.swarm.n as u64
     }
 
-    fn init(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng, _planned_iterations: usize) {
+    fn init(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng) {
         self.swarm = Swarm::new(self.swarm.params, ev.bounds());
         self.swarm.initialize(ev, rng);
     }
 
     fn step(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng) {
         let bounds = ev.bounds();
+        self.swarm.schedule(ev.progress());
         for i in 0..self.swarm.n {
             self.swarm.move_particle(i, None, 0.0, bounds, rng);
             if self.swarm.evaluate_particle(i, ev).is_none() {
@@ -370,22 +410,42 @@ mod tests {
         assert_eq!(out.evaluations, 5);
     }
 
-    #[test]
-    fn inertia_is_damped_once_per_iteration() {
+    fn last_inertia(budget: Budget) -> f64 {
         let p = Sliver(vec![Bound::new(0.0, 1.0); 2]);
         let mut pso = Pso::new(PsoParams {
             population: 3,
             initial_redraws: 0,
             ..PsoParams::DEFAULT
         });
-        let _ = solve(
-            &p,
-            &mut pso,
-            Budget::iterations(10),
-            &mut rng_from_seed(1),
-            &mut |_| {},
+        let _ = solve(&p, &mut pso, budget, &mut rng_from_seed(1), &mut |_| {});
+        pso.inertia()
+    }
+
+    #[test]
+    fn inertia_is_damped_once_per_iteration_at_the_paper_budget() {
+        // SPSO's own schedule: w *= 0.98 after each iteration; the last of 200 steps uses
+        // 0.98^199, bit for bit the same product.
+        let mut w = 1.0_f64;
+        for _ in 0..199 {
+            w *= 0.98;
+        }
+        assert_eq!(last_inertia(Budget::iterations(200)).to_bits(), w.to_bits());
+    }
+
+    #[test]
+    fn the_inertia_schedule_stretches_with_the_budget() {
+        // Ten steps cover the whole schedule: the last uses 0.98^(200 * 9 / 10).
+        assert!((last_inertia(Budget::iterations(10)) - 0.98_f64.powi(180)).abs() < 1e-12);
+        // Five times the paper's budget: at the last step w is where SPSO's is at its last.
+        let w = last_inertia(Budget::iterations(1000));
+        assert!((w - 0.98_f64.powf(200.0 * 999.0 / 1000.0)).abs() < 1e-12);
+        // An evaluation budget: 3 per step, 3 for initialisation, 30 in all -> 9 steps; the
+        // last starts with 27 of 30 spent.
+        let w = last_inertia(Budget::evaluations(30));
+        assert!(
+            (w - 0.98_f64.powf(200.0 * 27.0 / 30.0)).abs() < 1e-12,
+            "{w}"
         );
-        assert!((pso.inertia() - 0.98_f64.powi(10)).abs() < 1e-12);
     }
 
     #[test]

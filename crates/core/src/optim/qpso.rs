@@ -13,14 +13,16 @@
 //!
 //! (u is drawn in (0, 1], so ln(1/u) is finite.) The new position is projected into the
 //! bounds (clamped; periodic bounds wrapped), evaluated, and pbest_i and gbest updated on
-//! strict improvement, gbest at once. T is the planned iteration count passed to
-//! [`Optimizer::init`]; past it beta stays at `beta_end`.
+//! strict improvement, gbest at once. The schedule runs over the budget
+//! ([`super::Progress::fraction_to_last`]): t / (T - 1) of an iteration budget (the form
+//! above, unchanged at the paper's 200 iterations), the share of evaluations spent under an
+//! evaluation budget.
 
 use rand::Rng as _;
 use serde::{Deserialize, Serialize};
 
 use super::params::{check, ParamsError};
-use super::swarm::{fill_uniform, into_bound, row, row_mut, BestSoFar};
+use super::swarm::{into_bound, row, row_mut, BestSoFar};
 use super::{Evaluator, Optimizer};
 use crate::problem::Evaluation;
 use crate::rng::Rng;
@@ -65,15 +67,10 @@ impl QpsoParams {
         )
     }
 
-    /// beta at step `t` (0-based) of `planned` steps: linear from `beta_start` at the first
-    /// to `beta_end` at the last, then held.
+    /// beta at budget fraction `frac` ([`Progress::fraction_to_last`]): linear from
+    /// `beta_start` at the first step to `beta_end` at the last.
     #[must_use]
-    pub fn beta(&self, t: usize, planned: usize) -> f64 {
-        if planned <= 1 {
-            return self.beta_start;
-        }
-        #[allow(clippy::cast_precision_loss)] // iteration counts are far below 2^52
-        let frac = t.min(planned - 1) as f64 / (planned - 1) as f64;
+    pub fn beta(&self, frac: f64) -> f64 {
         self.beta_start + (self.beta_end - self.beta_start) * frac
     }
 }
@@ -95,8 +92,8 @@ pub struct Qpso {
     pbest_eval: Vec<Evaluation>,
     gbest: BestSoFar,
     mbest: Vec<f64>,
-    t: usize,
-    planned: usize,
+    /// The beta of the last step.
+    beta: f64,
 }
 
 impl Qpso {
@@ -111,8 +108,7 @@ impl Qpso {
             pbest_eval: Vec::new(),
             gbest: BestSoFar::new(0),
             mbest: Vec::new(),
-            t: 0,
-            planned: 1,
+            beta: params.beta_start,
         }
     }
 
@@ -121,10 +117,10 @@ impl Qpso {
         &self.params
     }
 
-    /// The beta the next step will use.
+    /// The beta the last step used.
     #[must_use]
     pub fn current_beta(&self) -> f64 {
-        self.params.beta(self.t, self.planned)
+        self.beta
     }
 }
 
@@ -133,7 +129,7 @@ impl Optimizer for Qpso {
         self.n as u64
     }
 
-    fn init(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng, planned_iterations: usize) {
+    fn init(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng) {
         let bounds = ev.bounds();
         let (n, dim) = (self.n, bounds.len());
         self.dim = dim;
@@ -141,11 +137,10 @@ impl Optimizer for Qpso {
         self.pbest_eval = vec![Evaluation::worst(); n];
         self.gbest = BestSoFar::new(dim);
         self.mbest = vec![0.0; dim];
-        self.t = 0;
-        self.planned = planned_iterations.max(1);
+        self.beta = self.params.beta_start;
         for i in 0..n {
             let x = row_mut(&mut self.x, i, dim);
-            fill_uniform(bounds, rng, x);
+            ev.sample_initial(rng, x);
             let e = ev.evaluate(x).unwrap_or(Evaluation::worst());
             self.pbest_eval[i] = e;
             self.gbest.offer(x, e);
@@ -156,8 +151,8 @@ impl Optimizer for Qpso {
     fn step(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng) {
         let bounds = ev.bounds();
         let (n, dim) = (self.n, self.dim);
-        let beta = self.current_beta();
-        self.t += 1;
+        let beta = self.params.beta(ev.progress().fraction_to_last());
+        self.beta = beta;
 
         self.mbest.fill(0.0);
         for i in 0..n {
@@ -210,11 +205,9 @@ mod tests {
     #[test]
     fn beta_goes_linearly_from_start_to_end() {
         let p = QpsoParams::DEFAULT;
-        assert_eq!(p.beta(0, 200), 1.0);
-        assert_eq!(p.beta(199, 200), 0.5);
-        assert_eq!(p.beta(500, 200), 0.5);
-        assert!((p.beta(99, 199) - 0.75).abs() < 1e-12);
-        assert_eq!(p.beta(0, 1), 1.0);
+        assert_eq!(p.beta(0.0), 1.0);
+        assert_eq!(p.beta(1.0), 0.5);
+        assert!((p.beta(0.5) - 0.75).abs() < 1e-12);
     }
 
     struct Flat(Vec<Bound>);
@@ -229,7 +222,7 @@ mod tests {
     }
 
     #[test]
-    fn the_schedule_follows_the_planned_iterations() {
+    fn the_schedule_follows_the_budget() {
         let p = Flat(vec![Bound::new(0.0, 1.0)]);
         let mut q = Qpso::new(QpsoParams {
             population: 2,
@@ -242,8 +235,22 @@ mod tests {
             &mut rng_from_seed(0),
             &mut |_| {},
         );
-        // 11 steps taken (beta 1.0 .. 0.5), the next would stay at the end value.
+        // 11 steps taken: the last one used the end value.
         assert_eq!(q.current_beta(), 0.5);
+        let mut q = Qpso::new(QpsoParams {
+            population: 2,
+            ..QpsoParams::DEFAULT
+        });
+        let _ = solve(
+            &p,
+            &mut q,
+            Budget::evaluations(2 * 11),
+            &mut rng_from_seed(0),
+            &mut |_| {},
+        );
+        // Ten steps of two evaluations after two for initialisation: the last starts with
+        // 20 of 22 spent.
+        assert!((q.current_beta() - (1.0 - 0.5 * 20.0 / 22.0)).abs() < 1e-15);
         let mut q = Qpso::new(QpsoParams::DEFAULT);
         let _ = solve(
             &p,
@@ -255,7 +262,7 @@ mod tests {
             &mut rng_from_seed(0),
             &mut |_| {},
         );
-        // Planned = min(5, 550 / 50 - 1 = 10) = 5: after 5 steps beta reached 0.5.
+        // The iteration limit is the nearer one: after 5 steps beta reached 0.5.
         assert_eq!(q.current_beta(), 0.5);
     }
 }

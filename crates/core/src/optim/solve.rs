@@ -139,7 +139,9 @@ pub fn solve(
     let max_iterations = budget.max_iterations();
     let planned = budget.planned_iterations(optimizer.evaluations_per_iteration());
     let mut ev = Evaluator::new(problem, budget.evaluations);
-    optimizer.init(&mut ev, rng, planned);
+    let max_steps = max_iterations.map(|m| m as u64);
+    ev.set_iteration(0, max_steps);
+    optimizer.init(&mut ev, rng);
 
     let mut trace = Vec::with_capacity(max_iterations.unwrap_or(planned).min(1 << 16) + 1);
     let mut emit = |iteration: usize, ev: &Evaluator<'_>, opt: &dyn Optimizer| {
@@ -167,6 +169,7 @@ pub fn solve(
             break Termination::MaxEvaluations;
         }
         let before = ev.count();
+        ev.set_iteration(iteration as u64, max_steps);
         optimizer.step(&mut ev, rng);
         iteration += 1;
         emit(iteration, &ev, optimizer);
@@ -218,7 +221,7 @@ mod tests {
         fn evaluations_per_iteration(&self) -> u64 {
             1
         }
-        fn init(&mut self, ev: &mut Evaluator<'_>, _: &mut Rng, _: usize) {
+        fn init(&mut self, ev: &mut Evaluator<'_>, _: &mut Rng) {
             let _ = ev.evaluate(&[0.0]);
         }
         fn step(&mut self, _: &mut Evaluator<'_>, _: &mut Rng) {}

@@ -1,26 +1,9 @@
-//! Small helpers every population-based optimizer here shares: uniform sampling in the box,
-//! bringing a moved coordinate back into its bound, and a best-so-far record.
+//! Small helpers every population-based optimizer here shares: bringing a moved coordinate back into its bound, and a best-so-far record.
 //!
 //! Populations are stored as flat row-major `Vec<f64>` (one row of `dim` values per
 //! individual), allocated once per run, so the inner loops never allocate.
 
-use rand::Rng as _;
-
 use crate::problem::{Bound, Evaluation};
-use crate::rng::Rng;
-
-/// A uniform sample in `[lo, hi]`.
-pub(crate) fn uniform_in(b: &Bound, rng: &mut Rng) -> f64 {
-    let u: f64 = rng.random();
-    (b.lo + u * (b.hi - b.lo)).clamp(b.lo, b.hi)
-}
-
-/// Fills `out` with a uniform sample of the box.
-pub(crate) fn fill_uniform(bounds: &[Bound], rng: &mut Rng, out: &mut [f64]) {
-    for (x, b) in out.iter_mut().zip(bounds) {
-        *x = uniform_in(b, rng);
-    }
-}
 
 /// Brings `x` into its bound: wraps periodic bounds, clamps the others. A NaN (which only
 /// a degenerate update could produce) goes to the middle, so nothing outside the box is
@@ -90,9 +73,9 @@ mod tests {
         let mut rng = rng_from_seed(1);
         let b = Bound::new(-2.0, 3.0);
         for _ in 0..1000 {
-            assert!(b.contains(uniform_in(&b, &mut rng)));
+            assert!(b.contains(b.sample(&mut rng)));
         }
-        assert_eq!(uniform_in(&Bound::new(1.0, 1.0), &mut rng), 1.0);
+        assert_eq!(Bound::new(1.0, 1.0).sample(&mut rng), 1.0);
         assert_eq!(into_bound(&b, f64::NAN), 0.5);
         assert_eq!(into_bound(&b, 9.0), 3.0);
     }

@@ -154,6 +154,35 @@ impl Terrain {
     pub fn max_height(&self) -> f64 {
         self.max
     }
+    /// A 64-bit FNV-1a hash of the grid (size, origin, cell and every height's bits) as 16
+    /// hex digits: plan files record it so a plan is not evaluated on other terrain by
+    /// mistake.
+    #[must_use]
+    pub fn fingerprint(&self) -> String {
+        let (nx, ny) = self.size();
+        let (ox, oy) = self.origin();
+        let (cx, cy) = self.cell();
+        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+        let words = [
+            nx as u64,
+            ny as u64,
+            ox.to_bits(),
+            oy.to_bits(),
+            cx.to_bits(),
+            cy.to_bits(),
+        ];
+        for w in words
+            .into_iter()
+            .chain(self.heights().iter().map(|v| v.to_bits()))
+        {
+            for b in w.to_le_bytes() {
+                h ^= u64::from(b);
+                h = h.wrapping_mul(0x0100_0000_01b3);
+            }
+        }
+        format!("{h:016x}")
+    }
+
     #[must_use]
     pub fn heights(&self) -> &[f64] {
         &self.heights

@@ -9,7 +9,7 @@
 //! | Function | What it answers | Reference it matches |
 //! |---|---|---|
 //! | [`summarize`] | mean, median, sample std, min, max of one sample | numpy |
-//! | [`rank_sum`] | do two algorithms' costs differ? (two-sided) | `scipy.stats.mannwhitneyu(method='asymptotic')` |
+//! | [`rank_sum`] | do two methods' costs differ? (two-sided) | `scipy.stats.mannwhitneyu`, `method='exact'` without ties and n1 n2 <= 2500, else `'asymptotic'` |
 //! | [`holm`] | p-values adjusted for many pairwise comparisons | `statsmodels` `multipletests(method='holm')` |
 //! | [`fisher_exact`] | do two algorithms' success rates differ? (2x2, two-sided) | `scipy.stats.fisher_exact` |
 //! | [`friedman`] | do k algorithms differ over the same scenarios or seeds? | `scipy.stats.friedmanchisquare` |
@@ -29,7 +29,7 @@ mod descriptive;
 mod fisher;
 mod friedman;
 mod holm;
-pub mod json_f64;
+pub use swarmplan_core::json_f64;
 mod ranks;
 mod ranksum;
 
@@ -37,4 +37,4 @@ pub use descriptive::{summarize, Summary};
 pub use fisher::fisher_exact;
 pub use friedman::{friedman, FriedmanTest};
 pub use holm::holm;
-pub use ranksum::{rank_sum, RankSumTest};
+pub use ranksum::{exact_upper_tail, rank_sum, RankSumMethod, RankSumTest, EXACT_MAX_PAIRS};

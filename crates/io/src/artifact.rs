@@ -1,0 +1,213 @@
+//! The run artifact: what `plan` writes as `run.json` and `plot`, `report`, `export` and
+//! `evaluate --json` read or print, as one versioned serde type (no string-keyed JSON).
+//!
+//! Like a bench run record, it names the method in full (label,
+//! optimizer, encoding, initialisation), the seed and budget, and carries the typed
+//! assessment of the plan. Non-finite numbers are written as the strings `"inf"`, `"-inf"`
+//! and `"nan"` everywhere ([`swarmplan_core::json_f64`]).
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+use swarmplan_core::cost::Assessment;
+use swarmplan_core::encoding::{EncodingKind, InitKind};
+use swarmplan_core::feasibility::Violation;
+use swarmplan_core::json_f64;
+use swarmplan_core::method::Method;
+use swarmplan_core::optim::{Budget, OptimizerKind, OptimizerParams};
+use swarmplan_core::run::RunResult;
+use swarmplan_core::world::World;
+use thiserror::Error;
+
+/// Version of the `run.json` layout; readers refuse other versions.
+pub const RUN_ARTIFACT_VERSION: u32 = 1;
+
+#[derive(Debug, Error)]
+pub enum ArtifactError {
+    #[error("{path}: cannot read: {source}")]
+    Read {
+        path: String,
+        source: std::io::Error,
+    },
+    #[error("{path}: not a run artifact: {message}")]
+    Parse { path: String, message: String },
+    #[error("{path}: version {found}, this build reads version {RUN_ARTIFACT_VERSION}")]
+    Version { path: String, found: u32 },
+}
+
+/// One UAV in the report.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct UavSummary {
+    #[serde(with = "json_f64")]
+    pub cost: f64,
+    #[serde(with = "json_f64")]
+    pub length_m: f64,
+    #[serde(with = "json_f64")]
+    pub speed_mps: f64,
+    #[serde(with = "json_f64")]
+    pub arrival_s: f64,
+    #[serde(with = "json_f64")]
+    pub energy_j: f64,
+    #[serde(with = "json_f64")]
+    pub battery_ratio: f64,
+    #[serde(with = "json_f64")]
+    pub min_clearance_m: f64,
+    #[serde(with = "json_f64")]
+    pub outage_s: f64,
+}
+
+/// Cost of the plan: total, per UAV and per term (weighted, summed over UAVs, plus
+/// `penalty`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CostSummary {
+    #[serde(with = "json_f64")]
+    pub total: f64,
+    #[serde(with = "json_f64")]
+    pub per_uav: f64,
+    pub terms: BTreeMap<String, f64>,
+}
+
+/// The assessment of a plan as `evaluate --json` prints it and `run.json` stores it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AssessmentReport {
+    pub feasible: bool,
+    #[serde(with = "json_f64")]
+    pub violation: f64,
+    pub cost: CostSummary,
+    pub uavs: Vec<UavSummary>,
+    pub violations: Vec<Violation>,
+}
+
+impl AssessmentReport {
+    #[must_use]
+    pub fn of(a: &Assessment) -> Self {
+        let finite = |v: f64| if v.is_finite() { v } else { f64::MAX };
+        let mut terms: BTreeMap<String, f64> = a
+            .term_totals()
+            .iter()
+            .map(|(t, v)| (t.name().to_string(), finite(v)))
+            .collect();
+        terms.insert("penalty".into(), finite(a.penalty));
+        Self {
+            feasible: a.feasible(),
+            violation: a.violation,
+            cost: CostSummary {
+                total: a.total,
+                per_uav: a.per_uav_cost(),
+                terms,
+            },
+            uavs: a
+                .per_uav
+                .iter()
+                .map(|u| UavSummary {
+                    cost: u.cost,
+                    length_m: u.length_m,
+                    speed_mps: u.speed_mps,
+                    arrival_s: u.arrival_s,
+                    energy_j: u.energy_j,
+                    battery_ratio: u.battery_ratio,
+                    min_clearance_m: u.min_clearance_m,
+                    outage_s: u.outage_s,
+                })
+                .collect(),
+            violations: a.violations.clone().unwrap_or_default(),
+        }
+    }
+}
+
+/// The files a `plan` folder holds.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct ArtifactFiles {
+    pub plan: String,
+    pub convergence: String,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub exports: Vec<String>,
+}
+
+/// `run.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunArtifact {
+    pub version: u32,
+    pub scenario: String,
+    /// [`swarmplan_core::world::terrain::Terrain::fingerprint`] of the terrain planned on.
+    pub terrain_fingerprint: String,
+    /// The method's label, then its three parts spelled out.
+    pub method: Method,
+    pub optimizer: OptimizerKind,
+    pub encoding: EncodingKind,
+    pub init: InitKind,
+    pub seed: u64,
+    pub budget: Budget,
+    pub params: OptimizerParams,
+    pub evaluations: u64,
+    pub iterations: usize,
+    /// Wall time of the optimisation, seconds.
+    #[serde(with = "json_f64")]
+    pub seconds: f64,
+    pub report: AssessmentReport,
+    pub files: ArtifactFiles,
+}
+
+impl RunArtifact {
+    #[must_use]
+    pub fn new(
+        world: &World,
+        result: &RunResult,
+        budget: Budget,
+        params: OptimizerParams,
+        files: ArtifactFiles,
+    ) -> Self {
+        Self {
+            version: RUN_ARTIFACT_VERSION,
+            scenario: world.spec.name.clone(),
+            terrain_fingerprint: world.terrain.fingerprint(),
+            method: result.method,
+            optimizer: result.method.optimizer,
+            encoding: result.method.encoding,
+            init: result.method.init,
+            seed: result.seed,
+            budget,
+            params,
+            evaluations: result.outcome.evaluations,
+            iterations: result.outcome.iterations,
+            seconds: result.seconds,
+            report: AssessmentReport::of(&result.assessment),
+            files,
+        }
+    }
+
+    /// A one-line description for figure titles and reports.
+    #[must_use]
+    pub fn describe(&self) -> String {
+        format!(
+            "{} ({} on the {} encoding, {} init), seed {}, {} evaluations",
+            self.method, self.optimizer, self.encoding, self.init, self.seed, self.evaluations
+        )
+    }
+
+    /// Reads `run.json`, refusing another version.
+    pub fn read(path: &Path) -> Result<Self, ArtifactError> {
+        let p = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|source| ArtifactError::Read {
+            path: p.clone(),
+            source,
+        })?;
+        let version: serde_json::Value =
+            serde_json::from_str(&text).map_err(|e| ArtifactError::Parse {
+                path: p.clone(),
+                message: e.to_string(),
+            })?;
+        let found = version["version"].as_u64().unwrap_or(0);
+        if found != u64::from(RUN_ARTIFACT_VERSION) {
+            return Err(ArtifactError::Version {
+                path: p,
+                found: u32::try_from(found).unwrap_or(u32::MAX),
+            });
+        }
+        serde_json::from_str(&text).map_err(|e| ArtifactError::Parse {
+            path: p,
+            message: e.to_string(),
+        })
+    }
+}
