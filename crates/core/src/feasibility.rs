@@ -76,18 +76,23 @@ impl ViolationKind {
     /// The amount that counts as one unit of violation, in the kind's unit. The violation
     /// measure adds `1 + amount / scale` per violation, so metres, degrees, seconds, per cent
     /// and kilograms are put on one footing before they are summed: any violation counts at
-    /// least 1, and a further unit is roughly "as hard to repair" across kinds: 10 m of
-    /// geometry (the terrain clearance and the separation distance are both 10 m), 5 deg of
-    /// turn or climb, 1 m/s of speed, 0.1 kg of payload, 5 % of the usable battery, 1 s of
-    /// contact beyond the tolerated outage.
+    /// least 1, and each further unit adds 1. A unit is the resolution at which a violation
+    /// still matters to an operator and at which the penalty (1000 per unit by default)
+    /// outweighs what the objective pays for avoiding it (about 5-15 per metre of path):
+    /// 1 m of geometry (threat, terrain, altitude band, map box, separation), 1 deg of turn
+    /// or climb, 0.1 m/s of speed, 0.01 kg of payload, 1 % of the usable battery, 1 s of
+    /// contact beyond the tolerated outage. (The first build summed raw amounts, which
+    /// made a kilogram of payload weigh as much as a metre of threat intrusion.)
     #[must_use]
     pub const fn scale(self) -> f64 {
         match self {
-            Self::Threat | Self::Terrain | Self::Altitude | Self::Bounds | Self::Separation => 10.0,
-            Self::Turn | Self::Climb => 5.0,
-            Self::Speed | Self::Comm => 1.0,
-            Self::Payload => 0.1,
-            Self::Energy => 5.0,
+            Self::Threat | Self::Terrain | Self::Altitude | Self::Bounds | Self::Separation => {
+                1.0
+            }
+            Self::Turn | Self::Climb => 1.0,
+            Self::Speed => 0.1,
+            Self::Payload => 0.01,
+            Self::Energy | Self::Comm => 1.0,
         }
     }
 
