@@ -53,6 +53,8 @@ enum ScenarioCommand {
     },
     /// Write an editable scenario on a georeferenced DEM from start/goal latitude and longitude.
     New(commands::scenario_new::ScenarioNewArgs),
+    /// Write a random scenario (threats, starts, goal, terrain) from a seed.
+    Generate(commands::scenario_generate::ScenarioGenerateArgs),
 }
 
 /// A scenario and an optional terrain file that replaces its terrain source.
@@ -81,9 +83,16 @@ fn main() -> ExitCode {
         Command::Plot(args) => commands::plot::run(&args),
         Command::Export(args) => commands::export::run(&args),
         Command::Scenario(ScenarioCommand::New(args)) => commands::scenario_new::run(&args),
+        Command::Scenario(ScenarioCommand::Generate(args)) => {
+            commands::scenario_generate::run(&args)
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        Err(e) if e.downcast_ref::<commands::plan::Infeasible>().is_some() => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(commands::plan::EXIT_INFEASIBLE)
+        }
         Err(e) => {
             eprintln!("error: {e:#}");
             ExitCode::from(2)

@@ -281,3 +281,100 @@ fn bad_input_gets_a_clear_error_and_status_2() {
         .code(2)
         .stderr(predicate::str::contains("/nonexistent/dem.tif"));
 }
+
+#[test]
+fn an_infeasible_plan_says_so_last_and_require_feasible_exits_3() {
+    let dir = tempfile::tempdir().unwrap();
+    // Two iterations of six particles on tiny leave violations.
+    let out = swarmplan()
+        .args([
+            "plan",
+            "--scenario",
+            "tiny",
+            "--iterations",
+            "2",
+            "--population",
+            "6",
+        ])
+        .args(["--seed", "1", "--no-figures", "--require-feasible", "--out"])
+        .arg(dir.path())
+        .assert()
+        .code(3);
+    let stdout = String::from_utf8_lossy(&out.get_output().stdout).to_string();
+    let last = stdout.lines().last().unwrap_or_default();
+    assert!(last.starts_with("INFEASIBLE: "), "{stdout}");
+    assert!(last.contains(" violations ("), "{last}");
+    // Outputs were written before the exit.
+    assert!(dir.path().join("plan.json").exists());
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert!(stderr.contains("--require-feasible"), "{stderr}");
+}
+
+#[test]
+fn scenario_generate_writes_a_scenario_that_plans() {
+    let dir = tempfile::tempdir().unwrap();
+    let toml_path = dir.path().join("gen.toml");
+    swarmplan()
+        .args([
+            "scenario",
+            "generate",
+            "--seed",
+            "4",
+            "--uavs",
+            "8",
+            "--threats",
+            "12",
+        ])
+        .arg("--out")
+        .arg(&toml_path)
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(&toml_path).unwrap();
+    assert!(text.starts_with("# swarmplan scenario generate --seed 4 --uavs 8 --threats 12"));
+    assert_eq!(text.matches("[[uavs]]").count(), 8);
+    assert_eq!(text.matches("[[threats]]").count(), 12);
+    // The same flags give the same file.
+    let again = swarmplan()
+        .args([
+            "scenario",
+            "generate",
+            "--seed",
+            "4",
+            "--uavs",
+            "8",
+            "--threats",
+            "12",
+        ])
+        .assert()
+        .success();
+    assert_eq!(String::from_utf8_lossy(&again.get_output().stdout), text);
+    swarmplan()
+        .args([
+            "plan",
+            "--iterations",
+            "2",
+            "--population",
+            "6",
+            "--no-figures",
+            "--scenario",
+        ])
+        .arg(&toml_path)
+        .arg("--out")
+        .arg(dir.path().join("p"))
+        .assert()
+        .success();
+    swarmplan()
+        .args([
+            "scenario",
+            "generate",
+            "--seed",
+            "1",
+            "--uavs",
+            "5",
+            "--threats",
+            "400",
+        ])
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains("--threats 400: only"));
+}

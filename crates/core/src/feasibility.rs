@@ -86,9 +86,7 @@ impl ViolationKind {
     #[must_use]
     pub const fn scale(self) -> f64 {
         match self {
-            Self::Threat | Self::Terrain | Self::Altitude | Self::Bounds | Self::Separation => {
-                1.0
-            }
+            Self::Threat | Self::Terrain | Self::Altitude | Self::Bounds | Self::Separation => 1.0,
             Self::Turn | Self::Climb => 1.0,
             Self::Speed => 0.1,
             Self::Payload => 0.01,

@@ -5,6 +5,7 @@ pub mod artifact;
 pub mod dem;
 pub mod dem_ops;
 pub mod export;
+pub mod generate;
 pub mod geo;
 pub mod import;
 pub mod plan_file;

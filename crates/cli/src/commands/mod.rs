@@ -6,6 +6,7 @@ pub mod plan;
 pub mod plot;
 pub mod report;
 pub mod scenario;
+pub mod scenario_generate;
 pub mod scenario_new;
 
 use anyhow::Result;

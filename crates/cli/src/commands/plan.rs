@@ -52,6 +52,46 @@ pub struct PlanArgs {
     /// Geodetic origin LAT,LON[,ALT] for --export (overrides [geo] origin and the DEM's CRS).
     #[arg(long, allow_hyphen_values = true, requires = "export")]
     pub origin: Option<String>,
+    /// Exit with status 3 (after writing every output) when the plan is infeasible.
+    #[arg(long)]
+    pub require_feasible: bool,
+}
+
+/// Exit status of `plan --require-feasible` for an infeasible plan (2 is bad input).
+pub const EXIT_INFEASIBLE: u8 = 3;
+
+/// An infeasible plan under `--require-feasible`: the outputs were written.
+#[derive(Debug)]
+pub struct Infeasible(pub String);
+
+impl std::fmt::Display for Infeasible {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} (--require-feasible)", self.0)
+    }
+}
+
+impl std::error::Error for Infeasible {}
+
+/// The verdict line: `FEASIBLE` or `INFEASIBLE: N violations (kind n, ...)`.
+#[must_use]
+pub fn verdict(a: &swarmplan_core::cost::Assessment) -> String {
+    let list = a.violations.as_deref().unwrap_or_default();
+    if a.feasible() {
+        return "FEASIBLE: no hard constraint violated".into();
+    }
+    let mut counts = std::collections::BTreeMap::new();
+    for v in list {
+        *counts.entry(v.kind).or_insert(0_usize) += 1;
+    }
+    let by_kind: Vec<String> = counts
+        .iter()
+        .map(|(k, n)| format!("{} {n}", k.name()))
+        .collect();
+    format!(
+        "INFEASIBLE: {} violations ({})",
+        list.len(),
+        by_kind.join(", ")
+    )
 }
 
 /// Budget and algorithm settings, shared by `plan` and `bench`.
@@ -253,6 +293,15 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         for f in &figures {
             println!("wrote {} (and .svg)", f.display());
         }
+    }
+    let line = verdict(a);
+    if args.json {
+        eprintln!("{line}");
+    } else {
+        println!("{line}");
+    }
+    if args.require_feasible && !a.feasible() {
+        return Err(Infeasible(line).into());
     }
     Ok(())
 }

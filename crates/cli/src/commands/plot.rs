@@ -108,10 +108,16 @@ fn read_trace(path: &Path) -> Result<(Vec<f64>, Vec<Vec<f64>>)> {
     Ok((total, per_uav))
 }
 
-/// The title of a plan's figures: scenario, method and seed.
+/// The title of a plan's figures: scenario, method (its three parts when it is no preset),
+/// seed, and INFEASIBLE when the plan is.
 #[must_use]
 pub fn plan_title(scenario: &str, run: &RunArtifact) -> String {
-    format!("{scenario} - {} - seed {}", run.method, run.seed)
+    let verdict = if run.report.feasible {
+        ""
+    } else {
+        " - INFEASIBLE"
+    };
+    format!("{scenario} - {} - seed {}{verdict}", run.method, run.seed)
 }
 
 pub fn run(args: &PlotArgs) -> Result<()> {
