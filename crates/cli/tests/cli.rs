@@ -85,8 +85,8 @@ fn plan_writes_files_that_evaluate_reads_back_with_the_same_cost() {
         assert!(planned.get(key).is_some(), "missing {key}");
     }
     assert_eq!(planned["seed"], 7);
-    assert_eq!(planned["method"], "dls-smpso");
-    assert_eq!(planned["optimizer"], "dls-paper");
+    assert_eq!(planned["method"], "swarmplan");
+    assert_eq!(planned["optimizer"], "coop");
     // run.json is the same typed artifact.
     let run_json = json(&std::fs::read(dir.path().join("run.json")).unwrap());
     assert_eq!(run_json, planned);

@@ -92,6 +92,11 @@ impl Problem for PlanningProblem<'_> {
         })
     }
 
+    /// One UAV's path: 3 values per free waypoint.
+    fn block_size(&self) -> usize {
+        3 * self.frame.n
+    }
+
     fn sample_initial(&self, rng: &mut Rng, out: &mut [f64]) {
         match self.init {
             InitKind::Uniform => fill_uniform(self.encoding.bounds(), rng, out),

@@ -112,6 +112,18 @@ impl Evaluation {
     pub fn better_than(&self, other: &Self) -> bool {
         self.cost.total_cmp(&other.cost).is_lt()
     }
+
+    /// Strictly better under Deb's feasibility rules (Deb 2000, Comput. Methods Appl. Mech.
+    /// Eng. 186:311-338): the smaller violation wins, and between equal violations (two
+    /// feasible candidates in particular) the lower cost.
+    #[must_use]
+    pub fn better_feasibility_first(&self, other: &Self) -> bool {
+        match self.violation.total_cmp(&other.violation) {
+            std::cmp::Ordering::Less => true,
+            std::cmp::Ordering::Greater => false,
+            std::cmp::Ordering::Equal => self.better_than(other),
+        }
+    }
 }
 
 /// A minimisation problem over a box.
@@ -132,6 +144,12 @@ pub trait Problem: Sync {
 
     fn dimension(&self) -> usize {
         self.bounds().len()
+    }
+
+    /// Size of the blocks the variables come in (one UAV's path in a planning problem),
+    /// for optimizers that decompose the search; the whole vector by default.
+    fn block_size(&self) -> usize {
+        self.dimension()
     }
 }
 

@@ -111,6 +111,10 @@ impl Problem for BestTracker<'_> {
     fn sample_initial(&self, rng: &mut Rng, out: &mut [f64]) {
         self.inner.sample_initial(rng, out);
     }
+
+    fn block_size(&self) -> usize {
+        self.inner.block_size()
+    }
 }
 
 /// [`run`], also recording after initialisation and every iteration each UAV's cost (its

@@ -134,7 +134,7 @@ fn cases() -> Vec<(&'static str, OptimizerKind, OptimizerParams)> {
 
 /// Convergence thresholds: (optimizer, [sphere, rastrigin, rosenbrock, ackley, and the
 /// same four shifted]). Keep in step with the table in `crates/core/src/optim/mod.rs`.
-const THRESHOLDS: [(&str, [f64; 8]); 6] = [
+const THRESHOLDS: [(&str, [f64; 8]); 7] = [
     ("pso", [1.0, 200.0, 500.0, 10.0, 0.1, 250.0, 500.0, 8.0]),
     (
         "dls-paper",
@@ -147,6 +147,7 @@ const THRESHOLDS: [(&str, [f64; 8]); 6] = [
         "dls-exemplar",
         [1e-5, 3.0, 500.0, 0.01, 1e-5, 3.0, 500.0, 0.01],
     ),
+    ("coop", [10.0, 300.0, 1000.0, 5.0, 10.0, 300.0, 500.0, 5.0]),
 ];
 
 fn run(

@@ -9,6 +9,7 @@ use anyhow::{Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use swarmplan_core::method::Method;
+use swarmplan_core::optim::Budget;
 use swarmplan_experiment::aggregate::aggregate;
 use swarmplan_experiment::matrix::{ExperimentSpec, ParamSet, Shard};
 use swarmplan_experiment::record::RunRecord;
@@ -90,7 +91,7 @@ fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
     }
     let st = &args.settings;
     if st.iterations.is_some() || st.evaluations.is_some() {
-        spec.budget = budget(st.iterations, st.evaluations)?;
+        spec.budget = budget(st.iterations, st.evaluations, Budget::DEFAULT)?;
     }
     if st.params.is_some() || st.population.is_some() {
         let params = load_params(st.params.as_ref(), st.population)?;

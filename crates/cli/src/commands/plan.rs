@@ -22,9 +22,10 @@ use crate::ScenarioArgs;
 pub struct PlanArgs {
     #[command(flatten)]
     pub scenario: ScenarioArgs,
-    /// Method: a preset (pso, apso, qpso, gwo, abc, spso, dls-smpso, dls-smpso-exemplar,
-    /// pso-uniform, apso-uniform) or optimizer/encoding/init (e.g. pso/spherical/line).
-    #[arg(long = "method", visible_alias = "algo", default_value = "dls-smpso")]
+    /// Method: a preset (swarmplan, the default; pso, apso, qpso, gwo, abc, spso, dls-smpso,
+    /// dls-smpso-exemplar, pso-uniform, apso-uniform) or optimizer/encoding/init (e.g.
+    /// pso/spherical/line).
+    #[arg(long = "method", visible_alias = "algo", default_value = "swarmplan")]
     pub method: Method,
     /// Replace the method's encoding: spherical, cartesian, angle.
     #[arg(long)]
@@ -97,16 +98,18 @@ pub fn verdict(a: &swarmplan_core::cost::Assessment) -> String {
 /// Budget and algorithm settings, shared by `plan` and `bench`.
 #[derive(Debug, Clone, Args)]
 pub struct SettingsArgs {
-    /// Iterations per run (default 200, the paper's; ignored when only --evaluations is given).
+    /// Iterations per run (default: 200, the paper's, for the paper's methods; 38,700
+    /// evaluations for swarmplan's own). With --evaluations, whichever ends first.
     #[arg(long)]
     pub iterations: Option<usize>,
-    /// Population size (default 50, the paper's).
+    /// Population size (default 50, the paper's; 20 for swarmplan's sub-swarms).
     #[arg(long)]
     pub population: Option<usize>,
     /// Evaluation budget per run (fair comparisons); with --iterations, whichever ends first.
     #[arg(long)]
     pub evaluations: Option<u64>,
-    /// Optimizer parameters as TOML (sections pso, dls_smpso, dls_exemplar, qpso, gwo, abc).
+    /// Optimizer parameters as TOML (sections pso, dls_smpso, dls_exemplar, qpso, gwo, abc,
+    /// coop).
     #[arg(long)]
     pub params: Option<PathBuf>,
 }
@@ -136,7 +139,12 @@ pub fn load_params(path: Option<&PathBuf>, population: Option<usize>) -> Result<
 }
 
 /// The budget from the flags: iterations (default 200) and / or evaluations.
-pub fn budget(iterations: Option<usize>, evaluations: Option<u64>) -> Result<Budget> {
+/// The budget from the flags: iterations and / or evaluations; `default` when neither.
+pub fn budget(
+    iterations: Option<usize>,
+    evaluations: Option<u64>,
+    default: Budget,
+) -> Result<Budget> {
     if let Some(0) = iterations {
         anyhow::bail!("--iterations: expected at least 1, got 0");
     }
@@ -144,7 +152,7 @@ pub fn budget(iterations: Option<usize>, evaluations: Option<u64>) -> Result<Bud
         anyhow::bail!("--evaluations: expected at least 1, got 0");
     }
     Ok(match (iterations, evaluations) {
-        (None, None) => Budget::DEFAULT,
+        (None, None) => default,
         (i, e) => Budget {
             iterations: i,
             evaluations: e,
@@ -163,15 +171,20 @@ fn uav_series(trace: &[Vec<f64>]) -> Vec<Vec<f64>> {
 pub fn run_command(args: &PlanArgs) -> Result<()> {
     let world = super::load_world(&args.scenario)?;
     let params = load_params(args.settings.params.as_ref(), args.settings.population)?;
+    let method = args.method.with(args.encoding, args.init);
     let req = RunRequest {
-        method: args.method.with(args.encoding, args.init),
+        method,
         params,
-        budget: budget(args.settings.iterations, args.settings.evaluations)?,
+        budget: budget(
+            args.settings.iterations,
+            args.settings.evaluations,
+            method.optimizer.default_budget(),
+        )?,
         seed: args.seed.unwrap_or(world.spec.planning.seed),
     };
     if !args.json {
         eprintln!(
-            "planning {} with {} ({} on the {} encoding, {} init; seed {}, {} iterations max, population {})",
+            "planning {} with {} ({} on the {} encoding, {} init; seed {}, budget {} iterations / {} evaluations, population {})",
             world.spec.name,
             req.method,
             req.method.optimizer,
@@ -180,7 +193,10 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             req.seed,
             req.budget
                 .max_iterations()
-                .map_or("no".into(), |m| m.to_string()),
+                .map_or("any".into(), |m| m.to_string()),
+            req.budget
+                .evaluations
+                .map_or("any".into(), |m| m.to_string()),
             req.params.population(req.method.optimizer)
         );
     }

@@ -67,6 +67,13 @@ impl<'a> Evaluator<'a> {
         self.bounds.len()
     }
 
+    /// The problem's block size ([`Problem::block_size`]), at least 1 and at most the
+    /// dimension.
+    #[must_use]
+    pub fn block_size(&self) -> usize {
+        self.problem.block_size().clamp(1, self.dimension().max(1))
+    }
+
     /// Evaluates `x`, or returns `None` (without evaluating or counting) when the budget is
     /// spent. NaN costs and violations come back as +inf, so a NaN never wins a comparison.
     pub fn evaluate(&mut self, x: &[f64]) -> Option<Evaluation> {
