@@ -378,3 +378,49 @@ fn scenario_generate_writes_a_scenario_that_plans() {
         .code(2)
         .stderr(predicates::str::contains("--threats 400: only"));
 }
+
+#[test]
+fn anytime_stops_at_the_first_feasible_plan_or_at_the_time_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = swarmplan()
+        .args([
+            "plan",
+            "--scenario",
+            "tiny",
+            "--until-feasible",
+            "--json",
+            "--no-figures",
+        ])
+        .arg("--out")
+        .arg(dir.path().join("a"))
+        .assert()
+        .success();
+    let a = json(&out.get_output().stdout);
+    assert_eq!(a["termination"], "feasible");
+    assert_eq!(a["report"]["feasible"], true);
+    assert!(a["evaluations"].as_u64().unwrap() < 38_700);
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert!(stderr.contains("first feasible plan after"), "{stderr}");
+    let out = swarmplan()
+        .args([
+            "plan",
+            "--scenario",
+            "paper-case1",
+            "--time-limit",
+            "0.2",
+            "--json",
+        ])
+        .arg("--no-figures")
+        .arg("--out")
+        .arg(dir.path().join("b"))
+        .assert()
+        .success();
+    let b = json(&out.get_output().stdout);
+    assert_eq!(b["termination"], "time-limit");
+    assert!(String::from_utf8_lossy(&out.get_output().stderr).contains("not reproducible"));
+    swarmplan()
+        .args(["plan", "--scenario", "tiny", "--time-limit", "-1"])
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains("--time-limit: expected seconds"));
+}

@@ -2,18 +2,17 @@
 //! plan. The CLI's `plan` and the experiment runner both go through here, so a run is the
 //! same thing wherever it happens.
 
-use std::sync::Mutex;
 use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
 use crate::cost::Assessment;
 use crate::method::Method;
-use crate::optim::{build, solve, Budget, IterationRecord, OptimizerParams, Outcome};
+use crate::optim::{build, solve_watching, Budget, IterationRecord, OptimizerParams, Outcome};
 use crate::plan::Plan;
 use crate::planning::PlanningProblem;
-use crate::problem::{Bound, Evaluation, Problem};
-use crate::rng::{rng_from_seed, Rng};
+use crate::problem::Problem;
+use crate::rng::rng_from_seed;
 use crate::world::World;
 
 /// What to run.
@@ -47,19 +46,19 @@ pub fn run(
 ) -> RunResult {
     let problem = PlanningProblem::new(world, req.method.encoding, req.method.init);
     let start = Instant::now();
-    let outcome = search(&problem, req, observer);
+    let outcome = search(&problem, req, &mut |r, _| observer(r));
     finish(world, req, &problem, outcome, start.elapsed().as_secs_f64())
 }
 
-/// The optimisation itself, on `searched` (the planning problem or a wrapper of it).
+/// The optimisation itself: the request's optimizer from its seed.
 fn search(
-    searched: &dyn Problem,
+    problem: &dyn Problem,
     req: &RunRequest,
-    observer: &mut dyn FnMut(&IterationRecord),
+    observer: &mut dyn FnMut(&IterationRecord, &[f64]),
 ) -> Outcome {
     let mut optimizer = build(req.method.optimizer, &req.params);
     let mut rng = rng_from_seed(req.seed);
-    solve(searched, optimizer.as_mut(), req.budget, &mut rng, observer)
+    solve_watching(problem, optimizer.as_mut(), req.budget, &mut rng, observer)
 }
 
 /// Decodes and fully assesses the best point of `outcome`.
@@ -82,70 +81,31 @@ fn finish(
     }
 }
 
-/// A problem that remembers the best point evaluated so far (every optimizer's best is the
-/// best it evaluated), so an observer can look at it between iterations.
-struct BestTracker<'a> {
-    inner: &'a dyn Problem,
-    best: Mutex<(Evaluation, Vec<f64>)>,
-}
-
-impl Problem for BestTracker<'_> {
-    fn bounds(&self) -> &[Bound] {
-        self.inner.bounds()
-    }
-
-    fn evaluate(&self, x: &[f64]) -> Evaluation {
-        let e = self.inner.evaluate(x);
-        let mut best = self
-            .best
-            .lock()
-            .unwrap_or_else(std::sync::PoisonError::into_inner);
-        if best.1.is_empty() || e.better_than(&best.0) {
-            best.0 = e;
-            best.1.clear();
-            best.1.extend_from_slice(x);
-        }
-        e
-    }
-
-    fn sample_initial(&self, rng: &mut Rng, out: &mut [f64]) {
-        self.inner.sample_initial(rng, out);
-    }
-
-    fn block_size(&self) -> usize {
-        self.inner.block_size()
-    }
-}
-
 /// [`run`], also recording after initialisation and every iteration each UAV's cost (its
 /// weighted terms, without the penalty) in the best plan so far: `trace[k][i]` for
 /// iteration k and UAV i. The optimizer sees exactly the same evaluations; the extra
 /// assessments are left out of `seconds`.
+/// `progress` is called after initialisation and every iteration too (for progress output).
 #[must_use]
-pub fn run_with_uav_trace(world: &World, req: &RunRequest) -> (RunResult, Vec<Vec<f64>>) {
+pub fn run_with_uav_trace(
+    world: &World,
+    req: &RunRequest,
+    progress: &mut dyn FnMut(&IterationRecord),
+) -> (RunResult, Vec<Vec<f64>>) {
     let problem = PlanningProblem::new(world, req.method.encoding, req.method.init);
-    let tracker = BestTracker {
-        inner: &problem,
-        best: Mutex::new((Evaluation::worst(), Vec::new())),
-    };
     let mut trace = Vec::new();
     let mut observing = std::time::Duration::ZERO;
-    let mut observer = |_: &IterationRecord| {
+    let mut observer = |r: &IterationRecord, best_x: &[f64]| {
         let t0 = Instant::now();
-        let x = tracker
-            .best
-            .lock()
-            .unwrap_or_else(std::sync::PoisonError::into_inner)
-            .1
-            .clone();
-        if !x.is_empty() {
-            let a = crate::cost::assess(world, &problem.decode(&x), false);
+        if !best_x.is_empty() {
+            let a = crate::cost::assess(world, &problem.decode(best_x), false);
             trace.push(a.per_uav.iter().map(|u| u.cost).collect());
         }
+        progress(r);
         observing += t0.elapsed();
     };
     let start = Instant::now();
-    let outcome = search(&tracker, req, &mut observer);
+    let outcome = search(&problem, req, &mut observer);
     let seconds = (start.elapsed() - observing).as_secs_f64();
     (finish(world, req, &problem, outcome, seconds), trace)
 }

@@ -268,10 +268,7 @@ fn an_evaluation_budget_is_met_exactly() {
             alg,
             &params,
             &fs[0],
-            Budget {
-                iterations: Some(3),
-                evaluations: Some(1_000_000),
-            },
+            Budget::new(Some(3), Some(1_000_000)),
             3,
         );
         assert_eq!(

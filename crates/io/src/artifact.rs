@@ -15,7 +15,7 @@ use swarmplan_core::encoding::{EncodingKind, InitKind};
 use swarmplan_core::feasibility::Violation;
 use swarmplan_core::json_f64;
 use swarmplan_core::method::Method;
-use swarmplan_core::optim::{Budget, OptimizerKind, OptimizerParams};
+use swarmplan_core::optim::{Budget, OptimizerKind, OptimizerParams, Termination};
 use swarmplan_core::run::RunResult;
 use swarmplan_core::world::World;
 use thiserror::Error;
@@ -142,6 +142,8 @@ pub struct RunArtifact {
     pub params: OptimizerParams,
     pub evaluations: u64,
     pub iterations: usize,
+    /// Why the search stopped (`time-limit`: not reproducible from the seed alone).
+    pub termination: Termination,
     /// Wall time of the optimisation, seconds.
     #[serde(with = "json_f64")]
     pub seconds: f64,
@@ -171,6 +173,7 @@ impl RunArtifact {
             params,
             evaluations: result.outcome.evaluations,
             iterations: result.outcome.iterations,
+            termination: result.outcome.termination,
             seconds: result.seconds,
             report: AssessmentReport::of(&result.assessment),
             files,

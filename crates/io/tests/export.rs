@@ -34,10 +34,7 @@ fn planned(world: &World) -> Plan {
     let req = RunRequest {
         method: Method::preset("dls-smpso").expect("a preset"),
         params,
-        budget: Budget {
-            iterations: Some(15),
-            evaluations: None,
-        },
+        budget: Budget::iterations(15),
         seed: 7,
     };
     let mut observer = |_: &IterationRecord| {};

@@ -44,7 +44,7 @@ fn tracing_per_uav_costs_does_not_change_the_run() {
         seed: 11,
     };
     let plain = run(&world, &req, &mut |_| {});
-    let (traced, trace) = run_with_uav_trace(&world, &req);
+    let (traced, trace) = run_with_uav_trace(&world, &req, &mut |_| {});
     assert_eq!(plain.outcome.best_x, traced.outcome.best_x);
     assert_eq!(plain.outcome.evaluations, traced.outcome.evaluations);
     assert_eq!(trace.len(), traced.outcome.trace.len());

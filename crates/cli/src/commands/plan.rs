@@ -56,6 +56,99 @@ pub struct PlanArgs {
     /// Exit with status 3 (after writing every output) when the plan is infeasible.
     #[arg(long)]
     pub require_feasible: bool,
+    /// Stop after this many seconds of search, with the best plan so far (anytime
+    /// planning; a run stopped by the clock is not reproducible, and says so).
+    #[arg(long, value_name = "SECONDS", allow_hyphen_values = true)]
+    pub time_limit: Option<f64>,
+    /// Stop at the first feasible plan instead of improving it within the budget.
+    #[arg(long)]
+    pub until_feasible: bool,
+}
+
+/// Progress on stderr: a bar on a terminal, otherwise a log line at the start, at the
+/// first feasible plan and every 5 s.
+struct Progress {
+    bar: Option<indicatif::ProgressBar>,
+    started: std::time::Instant,
+    last_line: std::time::Duration,
+    feasible_seen: bool,
+    uavs: f64,
+    total: Option<u64>,
+}
+
+impl Progress {
+    fn new(budget: &Budget, uavs: usize, quiet: bool) -> Self {
+        use std::io::IsTerminal as _;
+        let total = budget.evaluations;
+        let bar = (!quiet && std::io::stderr().is_terminal()).then(|| {
+            let b = indicatif::ProgressBar::new(total.unwrap_or(0));
+            b.set_style(
+                indicatif::ProgressStyle::with_template(
+                    "{bar:30} {pos}/{len} evaluations  {elapsed}  {msg}",
+                )
+                .expect("a valid template"),
+            );
+            b
+        });
+        Self {
+            bar,
+            started: std::time::Instant::now(),
+            last_line: std::time::Duration::ZERO,
+            feasible_seen: false,
+            uavs: uavs.max(1) as f64,
+            total,
+        }
+    }
+
+    fn update(&mut self, r: &swarmplan_core::optim::IterationRecord) {
+        let state = if r.best_violation == 0.0 {
+            "feasible".to_string()
+        } else {
+            format!("infeasible (violation {:.1})", r.best_violation)
+        };
+        let msg = format!(
+            "iteration {}, best {:.1} per UAV, {state}",
+            r.iteration,
+            r.best_cost / self.uavs
+        );
+        let elapsed = self.started.elapsed();
+        let first_feasible = r.best_violation == 0.0 && !self.feasible_seen;
+        self.feasible_seen |= r.best_violation == 0.0;
+        if let Some(bar) = &self.bar {
+            bar.set_position(r.evaluations);
+            bar.set_message(msg);
+            if first_feasible {
+                bar.println(format!(
+                    "first feasible plan after {} evaluations ({:.1} s)",
+                    r.evaluations,
+                    elapsed.as_secs_f64()
+                ));
+            }
+            return;
+        }
+        if first_feasible {
+            eprintln!(
+                "first feasible plan after {} evaluations ({:.1} s)",
+                r.evaluations,
+                elapsed.as_secs_f64()
+            );
+        }
+        if r.iteration == 0 || elapsed - self.last_line >= std::time::Duration::from_secs(5) {
+            self.last_line = elapsed;
+            let of = self.total.map_or(String::new(), |t| format!(" of {t}"));
+            eprintln!(
+                "{:.1} s: {} evaluations{of}, {msg}",
+                elapsed.as_secs_f64(),
+                r.evaluations
+            );
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(bar) = &self.bar {
+            bar.finish_and_clear();
+        }
+    }
 }
 
 /// Exit status of `plan --require-feasible` for an infeasible plan (2 is bad input).
@@ -153,10 +246,7 @@ pub fn budget(
     }
     Ok(match (iterations, evaluations) {
         (None, None) => default,
-        (i, e) => Budget {
-            iterations: i,
-            evaluations: e,
-        },
+        (i, e) => Budget::new(i, e),
     })
 }
 
@@ -182,6 +272,18 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         )?,
         seed: args.seed.unwrap_or(world.spec.planning.seed),
     };
+    let mut req = req;
+    if let Some(t) = args.time_limit {
+        anyhow::ensure!(
+            t.is_finite() && t > 0.0 && t <= 1e7,
+            "--time-limit: expected seconds in (0, 1e7], got {t}"
+        );
+        // Truncation intended: milliseconds of a checked, bounded number of seconds.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let ms = (t * 1000.0).ceil() as u64;
+        req.budget.time_limit_ms = Some(ms);
+    }
+    req.budget.until_feasible = args.until_feasible;
     if !args.json {
         eprintln!(
             "planning {} with {} ({} on the {} encoding, {} init; seed {}, budget {} iterations / {} evaluations, population {})",
@@ -200,7 +302,15 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             req.params.population(req.method.optimizer)
         );
     }
-    let (result, uav_trace) = run_with_uav_trace(&world, &req);
+    let mut progress = Progress::new(&req.budget, world.uav_count(), args.json);
+    let (result, uav_trace) = run_with_uav_trace(&world, &req, &mut |r| progress.update(r));
+    progress.finish();
+    if result.outcome.termination == swarmplan_core::optim::Termination::TimeLimit {
+        eprintln!(
+            "stopped by --time-limit after {} evaluations: this run is not reproducible from its seed alone",
+            result.outcome.evaluations
+        );
+    }
 
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("{}: cannot create", args.out.display()))?;

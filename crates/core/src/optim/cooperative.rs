@@ -27,6 +27,16 @@
 //!        pbest, gbest and the context follow feasibility-first improvements at once
 //! ```
 //!
+//! **Restarts.** A context can be stuck in a state no single block can repair (all UAVs out
+//! of contact in an interference window, where only a joint move makes a relay chain; a
+//! path wedged against a threat). When `restart_after` rounds (a visit of every block) in a
+//! row leave an infeasible context without a 5 % drop of its violation, a new context is
+//! drawn as at the start
+//! (`population` evaluations) and the spreads reset; the best plan ever seen is kept apart
+//! and is what the run returns. A feasible context is never restarted. From the budget
+//! fraction `refine_from` on, restarts stop and the search goes back to the best plan seen,
+//! to refine it (a near-feasible plan found early is not left for a fresh random one).
+//!
 //! The inner PSO uses Clerc & Kennedy's constriction-equivalent constants (w = 0.7298,
 //! c1 = c2 = 1.49618; IEEE TEC 6(1):58-73, 2002), which converge within the short visits
 //! without a schedule. Every evaluation goes through the [`Evaluator`] and counts.
@@ -60,6 +70,10 @@ pub struct CoopParams {
     pub perturbation: f64,
     /// Share of a visit's particles drawn afresh from the initialisation (0.25).
     pub fresh: f64,
+    /// Rounds without improvement of an infeasible context before a restart (3; 0 never).
+    pub restart_after: usize,
+    /// Budget fraction from which restarts stop and the best plan so far is refined (0.7).
+    pub refine_from: f64,
 }
 
 impl CoopParams {
@@ -71,6 +85,8 @@ impl CoopParams {
         social: 1.49618,
         perturbation: 0.1,
         fresh: 0.25,
+        restart_after: 3,
+        refine_from: 0.7,
     };
 
     pub fn validate(&self) -> Result<(), ParamsError> {
@@ -104,6 +120,12 @@ impl CoopParams {
             "fresh",
             "a number in [0, 1]",
             self.fresh,
+        )?;
+        check(
+            (0.0..=1.0).contains(&self.refine_from),
+            "refine_from",
+            "a number in [0, 1]",
+            self.refine_from,
         )
     }
 }
@@ -139,6 +161,14 @@ pub struct Cooperative {
     spread: Vec<f64>,
     /// The context's evaluation when the current visit started.
     visit_start: Evaluation,
+    /// The context's evaluation when the current round started, and rounds in a row
+    /// without improvement.
+    round_start: Evaluation,
+    stale_rounds: usize,
+    /// The best vector ever evaluated (across restarts).
+    best: Vec<f64>,
+    best_eval: Evaluation,
+    restarts: u64,
 }
 
 impl Cooperative {
@@ -161,6 +191,45 @@ impl Cooperative {
             full: Vec::new(),
             spread: Vec::new(),
             visit_start: Evaluation::worst(),
+            round_start: Evaluation::worst(),
+            stale_rounds: 0,
+            best: Vec::new(),
+            best_eval: Evaluation::worst(),
+            restarts: 0,
+        }
+    }
+
+    /// Restarts so far.
+    #[must_use]
+    pub fn restarts(&self) -> u64 {
+        self.restarts
+    }
+
+    /// Draws a new context: the best of `population` points of the initialisation.
+    fn draw_context(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng) {
+        self.context_eval = Evaluation::worst();
+        self.spread = vec![self.params.perturbation; self.blocks()];
+        self.current = 0;
+        self.spent = 0;
+        let mut x = vec![0.0; self.dim];
+        for i in 0..self.params.population.max(1) {
+            ev.sample_initial(rng, &mut x);
+            let Some(e) = ev.evaluate(&x) else { break };
+            if i == 0 || e.better_feasibility_first(&self.context_eval) {
+                self.context.copy_from_slice(&x);
+                self.context_eval = e;
+            }
+        }
+        self.round_start = self.context_eval;
+        self.stale_rounds = 0;
+        self.keep_best();
+    }
+
+    /// Remembers the context if it is the best ever.
+    fn keep_best(&mut self) {
+        if self.best.is_empty() || self.context_eval.better_feasibility_first(&self.best_eval) {
+            self.best.clone_from(&self.context);
+            self.best_eval = self.context_eval;
         }
     }
 
@@ -300,6 +369,35 @@ impl Cooperative {
     }
 }
 
+impl Cooperative {
+    /// After every block was visited: count a stale round, restart when due.
+    fn end_round(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng) {
+        // Progress is a drop of the violation by at least 5 % over the round: the measure is
+        // continuous, so some tiny improvement is nearly always found.
+        let improved = self.context_eval.violation < 0.95 * self.round_start.violation;
+        self.round_start = self.context_eval;
+        if ev.progress().fraction() >= self.params.refine_from {
+            // Last phase: refine the best plan found instead of exploring anew.
+            if self.best_eval.better_feasibility_first(&self.context_eval) {
+                self.context.clone_from(&self.best);
+                self.context_eval = self.best_eval;
+                self.round_start = self.best_eval;
+            }
+            self.stale_rounds = 0;
+            return;
+        }
+        if improved || self.context_eval.feasible() {
+            self.stale_rounds = 0;
+            return;
+        }
+        self.stale_rounds += 1;
+        if self.params.restart_after > 0 && self.stale_rounds >= self.params.restart_after {
+            self.restarts += 1;
+            self.draw_context(ev, rng);
+        }
+    }
+}
+
 impl Optimizer for Cooperative {
     fn evaluations_per_iteration(&self) -> u64 {
         self.params.population as u64
@@ -311,18 +409,10 @@ impl Optimizer for Cooperative {
         self.context = vec![0.0; self.dim];
         self.context_eval = Evaluation::worst();
         self.full = vec![0.0; self.dim];
-        self.current = 0;
-        self.spent = 0;
-        self.spread = vec![self.params.perturbation; self.blocks()];
-        let mut x = vec![0.0; self.dim];
-        for i in 0..self.params.population.max(1) {
-            ev.sample_initial(rng, &mut x);
-            let Some(e) = ev.evaluate(&x) else { break };
-            if i == 0 || e.better_feasibility_first(&self.context_eval) {
-                self.context.copy_from_slice(&x);
-                self.context_eval = e;
-            }
-        }
+        self.best.clear();
+        self.best_eval = Evaluation::worst();
+        self.restarts = 0;
+        self.draw_context(ev, rng);
     }
 
     fn step(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng) {
@@ -347,11 +437,20 @@ impl Optimizer for Cooperative {
             };
             self.spent = 0;
             self.current = (self.current + 1) % self.blocks();
+            self.keep_best();
+            if self.current == 0 {
+                self.end_round(ev, rng);
+            }
         }
     }
 
     fn best(&self) -> (&[f64], Evaluation) {
-        (&self.context, self.context_eval)
+        // The context may have improved since the last record (a visit cut by the budget).
+        if self.best.is_empty() || self.context_eval.better_feasibility_first(&self.best_eval) {
+            (&self.context, self.context_eval)
+        } else {
+            (&self.best, self.best_eval)
+        }
     }
 }
 
@@ -379,6 +478,49 @@ mod tests {
         fn block_size(&self) -> usize {
             3
         }
+    }
+
+    /// Violation 1 on a plateau that no local move leaves.
+    struct Plateau(Vec<Bound>);
+
+    impl Problem for Plateau {
+        fn bounds(&self) -> &[Bound] {
+            &self.0
+        }
+        fn evaluate(&self, _: &[f64]) -> Evaluation {
+            Evaluation::new(1e3, 1.0)
+        }
+        fn block_size(&self) -> usize {
+            2
+        }
+    }
+
+    #[test]
+    fn a_stuck_infeasible_context_is_restarted_and_the_best_kept() {
+        let p = Plateau(vec![Bound::new(0.0, 1.0); 4]);
+        let mut opt = Cooperative::new(CoopParams::DEFAULT);
+        let out = solve(
+            &p,
+            &mut opt,
+            Budget::evaluations(5000),
+            &mut rng_from_seed(1),
+            &mut |_| {},
+        );
+        // A round is 2 blocks x 11 steps x 20 evaluations = 440; restart after 3 stale ones.
+        assert!(opt.restarts() >= 2, "{}", opt.restarts());
+        assert_eq!(out.best.violation, 1.0);
+        let mut never = Cooperative::new(CoopParams {
+            restart_after: 0,
+            ..CoopParams::DEFAULT
+        });
+        let _ = solve(
+            &p,
+            &mut never,
+            Budget::evaluations(5000),
+            &mut rng_from_seed(1),
+            &mut |_| {},
+        );
+        assert_eq!(never.restarts(), 0);
     }
 
     #[test]

@@ -96,7 +96,9 @@ pub use params::{
 pub use progress::{Progress, ProgressUnit};
 pub use pso::{Pso, PsoParams};
 pub use qpso::{Qpso, QpsoParams};
-pub use solve::{solve, Budget, IterationRecord, Outcome, Termination, DEFAULT_ITERATIONS};
+pub use solve::{
+    solve, solve_watching, Budget, IterationRecord, Outcome, Termination, DEFAULT_ITERATIONS,
+};
 
 use crate::problem::Evaluation;
 use crate::rng::Rng;

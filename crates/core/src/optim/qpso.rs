@@ -255,10 +255,7 @@ mod tests {
         let _ = solve(
             &p,
             &mut q,
-            Budget {
-                iterations: Some(5),
-                evaluations: Some(50 * 11),
-            },
+            Budget::new(Some(5), Some(50 * 11)),
             &mut rng_from_seed(0),
             &mut |_| {},
         );

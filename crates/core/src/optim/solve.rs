@@ -18,6 +18,11 @@ pub const DEFAULT_ITERATIONS: usize = 200;
 /// [`DEFAULT_ITERATIONS`] iterations. In a file, a missing field means "no such limit"
 /// (so `evaluations = 10000` alone is a pure evaluation budget, for comparisons at equal
 /// evaluations), and an empty table means the default.
+///
+/// Two further stops serve anytime planning: a wall-clock limit (checked between
+/// iterations; a run stopped by it is *not* reproducible, since how far it got depends on
+/// the machine, and records say so by their termination reason) and a stop at the first
+/// feasible best plan.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Budget {
@@ -28,30 +33,38 @@ pub struct Budget {
     /// step that reaches it is cut short.
     #[serde(default)]
     pub evaluations: Option<u64>,
+    /// Wall-clock limit in milliseconds (none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub time_limit_ms: Option<u64>,
+    /// Stop as soon as the best plan is feasible (false).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub until_feasible: bool,
 }
 
 impl Budget {
-    pub const DEFAULT: Self = Self {
-        iterations: Some(DEFAULT_ITERATIONS),
-        evaluations: None,
-    };
+    pub const DEFAULT: Self = Self::new(Some(DEFAULT_ITERATIONS), None);
+
+    /// A budget of at most `iterations` and at most `evaluations` (`None`: no such limit).
+    #[must_use]
+    pub const fn new(iterations: Option<usize>, evaluations: Option<u64>) -> Self {
+        Self {
+            iterations,
+            evaluations,
+            time_limit_ms: None,
+            until_feasible: false,
+        }
+    }
 
     /// A budget of `n` iterations and unlimited evaluations.
     #[must_use]
     pub const fn iterations(n: usize) -> Self {
-        Self {
-            iterations: Some(n),
-            evaluations: None,
-        }
+        Self::new(Some(n), None)
     }
 
     /// A budget of `n` evaluations and unlimited iterations.
     #[must_use]
     pub const fn evaluations(n: u64) -> Self {
-        Self {
-            iterations: None,
-            evaluations: Some(n),
-        }
+        Self::new(None, Some(n))
     }
 
     /// The iteration limit actually applied (the default when neither limit is given).
@@ -107,6 +120,10 @@ pub struct IterationRecord {
 pub enum Termination {
     MaxIterations,
     MaxEvaluations,
+    /// The wall-clock limit was reached (the run is not reproducible).
+    TimeLimit,
+    /// The best plan became feasible and the budget asked to stop there.
+    Feasible,
     /// Under an evaluations-only budget a step spent no evaluation, so the run could never
     /// end by budget. The built-in optimizers never do this; the guard protects the loop
     /// from a faulty custom optimizer.
@@ -136,6 +153,18 @@ pub fn solve(
     rng: &mut Rng,
     observer: &mut dyn FnMut(&IterationRecord),
 ) -> Outcome {
+    solve_watching(problem, optimizer, budget, rng, &mut |r, _| observer(r))
+}
+
+/// [`solve`], with the observer also shown the optimizer's best position after each step
+/// (for traces of the best plan itself).
+pub fn solve_watching(
+    problem: &dyn Problem,
+    optimizer: &mut dyn Optimizer,
+    budget: Budget,
+    rng: &mut Rng,
+    observer: &mut dyn FnMut(&IterationRecord, &[f64]),
+) -> Outcome {
     let max_iterations = budget.max_iterations();
     let planned = budget.planned_iterations(optimizer.evaluations_per_iteration());
     let mut ev = Evaluator::new(problem, budget.evaluations);
@@ -145,20 +174,30 @@ pub fn solve(
 
     let mut trace = Vec::with_capacity(max_iterations.unwrap_or(planned).min(1 << 16) + 1);
     let mut emit = |iteration: usize, ev: &Evaluator<'_>, opt: &dyn Optimizer| {
-        let (_, best) = opt.best();
+        let (best_x, best) = opt.best();
         let rec = IterationRecord {
             iteration,
             evaluations: ev.count(),
             best_cost: best.cost,
             best_violation: best.violation,
         };
-        observer(&rec);
+        observer(&rec, best_x);
         trace.push(rec);
     };
     emit(0, &ev, optimizer);
 
+    let started = std::time::Instant::now();
     let mut iteration = 0;
     let termination = loop {
+        if budget.until_feasible && optimizer.best().1.feasible() {
+            break Termination::Feasible;
+        }
+        if budget
+            .time_limit_ms
+            .is_some_and(|ms| started.elapsed().as_millis() >= u128::from(ms))
+        {
+            break Termination::TimeLimit;
+        }
         if ev.is_exhausted() {
             break Termination::MaxEvaluations;
         }
@@ -196,20 +235,10 @@ mod tests {
     #[test]
     fn planned_iterations_follow_the_tighter_limit() {
         assert_eq!(Budget::default().planned_iterations(50), 200);
-        assert_eq!(
-            Budget {
-                iterations: None,
-                evaluations: None
-            }
-            .planned_iterations(50),
-            200
-        );
+        assert_eq!(Budget::new(None, None).planned_iterations(50), 200);
         // 10,000 evaluations at 50 per iteration: 50 for initialisation, 199 steps.
         assert_eq!(Budget::evaluations(10_000).planned_iterations(50), 199);
-        let both = Budget {
-            iterations: Some(100),
-            evaluations: Some(10_000),
-        };
+        let both = Budget::new(Some(100), Some(10_000));
         assert_eq!(both.planned_iterations(50), 100);
         assert_eq!(Budget::evaluations(3).planned_iterations(50), 1);
     }
@@ -255,6 +284,31 @@ mod tests {
         let out = solve(&p, &mut Idle, Budget::iterations(4), &mut rng, &mut |_| {});
         assert_eq!(out.termination, Termination::MaxIterations);
         assert_eq!(out.trace.len(), 5);
+    }
+
+    #[test]
+    fn the_run_stops_at_the_first_feasible_best_when_asked() {
+        // Zero is feasible everywhere: stop right after initialisation.
+        let p = Zero(vec![crate::problem::Bound::new(-1.0, 1.0)]);
+        let mut rng = crate::rng::rng_from_seed(0);
+        let budget = Budget {
+            until_feasible: true,
+            ..Budget::iterations(50)
+        };
+        let out = solve(&p, &mut Idle, budget, &mut rng, &mut |_| {});
+        assert_eq!(
+            (out.termination, out.iterations),
+            (Termination::Feasible, 0)
+        );
+        let budget = Budget {
+            time_limit_ms: Some(0),
+            ..Budget::iterations(50)
+        };
+        let out = solve(&p, &mut Idle, budget, &mut rng, &mut |_| {});
+        assert_eq!(
+            (out.termination, out.iterations),
+            (Termination::TimeLimit, 0)
+        );
     }
 
     #[test]
