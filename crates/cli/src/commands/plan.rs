@@ -195,7 +195,7 @@ pub struct SettingsArgs {
     /// evaluations for swarmplan's own). With --evaluations, whichever ends first.
     #[arg(long)]
     pub iterations: Option<usize>,
-    /// Population size (default 50, the paper's; 20 for swarmplan's sub-swarms).
+    /// Population size (default 50, the paper's; 10 for swarmplan's sub-swarms).
     #[arg(long)]
     pub population: Option<usize>,
     /// Evaluation budget per run (fair comparisons); with --iterations, whichever ends first.

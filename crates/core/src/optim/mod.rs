@@ -53,7 +53,7 @@
 //! | `qpso` | 1e-3 (1.4e-5) | 200 (84) | 500 (213) | 0.01 (2.2e-3) | 1e-4 (2.0e-6) | 150 (51) | 500 (151) | 0.01 (2.2e-4) | 399 |
 //! | `gwo` | 1e-20 (1.3e-28) | 100 (33) | 100 (27) | 1e-10 (6.4e-14) | 1e4 (3844) | 400 (187) | 1e7 (2.3e6) | 16 (10.2) | 399 |
 //! | `abc` | 0.01 (1.0e-3) | 40 (13) | 1000 (268) | 5 (1.7) | 0.01 (2.0e-3) | 40 (18) | 200 (61) | 5 (2.3) | 400 |
-//! | `coop` | 10 (2.6) | 300 (125) | 1000 (500) | 5 (2.0) | 10 (3.0) | 300 (125) | 500 (181) | 5 (1.8) | 1004 |
+//! | `coop` | 1e-3 (3.1e-4) | 300 (125) | 1100 (525) | 5 (2.2) | 1e-3 (3.8e-4) | 400 (184) | 400 (152) | 4 (1.8) | 2018 |
 //!
 //! (* shifted.) The shifted columns show what a centred optimum hides: GWO's averaging of
 //! three leaders pulls towards the origin (sphere 3e-28 centred, median 1.1e3 shifted), and
@@ -62,7 +62,8 @@
 //! costs: within 20,000 evaluations the paper mode runs about 260 iterations instead of 399,
 //! the exemplar mode about 16 (over 1,000 evaluations per iteration). These numbers check
 //! conformance; they do not rank the optimizers. (`coop` sees these functions as one block,
-//! so it runs as a restarted PSO of 20 particles; it is built for block-structured plans.)
+//! so it runs as a PSO of 10 particles restarted around its best every 11 iterations; it is
+//! built for block-structured plans.)
 //!
 //! The same harness checks that the same seed gives a bit-identical outcome, that nothing
 //! outside the bounds is evaluated, that an evaluation budget which is not a multiple of

@@ -108,7 +108,7 @@ pub const PAPER_EVALUATIONS: u64 = 38_700;
 
 impl OptimizerKind {
     /// The budget a run gets when none is given: the paper's 200 iterations for the paper's
-    /// optimizers, [`PAPER_EVALUATIONS`] for `coop` (whose iterations are 20 evaluations).
+    /// optimizers, [`PAPER_EVALUATIONS`] for `coop` (whose iterations are 10 evaluations).
     #[must_use]
     pub const fn default_budget(self) -> super::Budget {
         match self {
@@ -265,7 +265,7 @@ mod tests {
         let p = OptimizerParams::default();
         p.validate().expect("defaults are valid");
         for a in OptimizerKind::ALL {
-            let want = if a == OptimizerKind::Coop { 20 } else { 50 };
+            let want = if a == OptimizerKind::Coop { 10 } else { 50 };
             assert_eq!(p.population(a), want, "{a}");
         }
         assert_eq!(p.pso.inertia, 1.0);
