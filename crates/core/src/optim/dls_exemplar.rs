@@ -214,20 +214,10 @@ impl Optimizer for DlsExemplar {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::optim::test_problems::Sphere;
     use crate::optim::{solve, Budget};
-    use crate::problem::{Bound, Problem};
+    use crate::problem::Bound;
     use crate::rng::rng_from_seed;
-
-    struct Sphere(Vec<Bound>);
-
-    impl Problem for Sphere {
-        fn bounds(&self) -> &[Bound] {
-            &self.0
-        }
-        fn evaluate(&self, x: &[f64]) -> Evaluation {
-            Evaluation::new(x.iter().map(|v| v * v).sum(), 0.0)
-        }
-    }
 
     #[test]
     fn spends_extra_evaluations_and_counts_them() {

@@ -218,20 +218,10 @@ impl Optimizer for DlsPaper {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::optim::test_problems::{Flat, Sphere};
     use crate::optim::{solve, Budget};
-    use crate::problem::{Bound, Problem};
+    use crate::problem::Bound;
     use crate::rng::rng_from_seed;
-
-    struct Sphere(Vec<Bound>);
-
-    impl Problem for Sphere {
-        fn bounds(&self) -> &[Bound] {
-            &self.0
-        }
-        fn evaluate(&self, x: &[f64]) -> Evaluation {
-            Evaluation::new(x.iter().map(|v| v * v).sum(), 0.0)
-        }
-    }
 
     fn run(iterations: usize) -> (DlsPaper, crate::optim::Outcome) {
         let p = Sphere(vec![Bound::new(-10.0, 10.0); 10]);
@@ -258,17 +248,6 @@ mod tests {
         assert!(opt.dls_evaluations() > 0);
         assert_eq!(out.evaluations, 10 + 50 * 10 + opt.dls_evaluations());
         assert!(out.best.cost < 1.0, "{}", out.best.cost);
-    }
-
-    struct Flat(Vec<Bound>);
-
-    impl Problem for Flat {
-        fn bounds(&self) -> &[Bound] {
-            &self.0
-        }
-        fn evaluate(&self, _: &[f64]) -> Evaluation {
-            Evaluation::new(1.0, 0.0)
-        }
     }
 
     #[test]

@@ -82,6 +82,8 @@ pub mod pso;
 pub mod qpso;
 mod solve;
 mod swarm;
+#[cfg(test)]
+mod test_problems;
 
 pub use abc::{Abc, AbcParams};
 pub use cooperative::{CoopParams, Cooperative};
