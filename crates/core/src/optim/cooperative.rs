@@ -160,6 +160,8 @@ pub struct Cooperative {
     gbest_eval: Evaluation,
     /// A whole vector to evaluate.
     full: Vec<f64>,
+    /// One block's candidate.
+    scratch: Vec<f64>,
     /// Spread s_b of each block's visits.
     spread: Vec<f64>,
     /// The context's evaluation when the current visit started.
@@ -192,6 +194,7 @@ impl Cooperative {
             gbest: Vec::new(),
             gbest_eval: Evaluation::worst(),
             full: Vec::new(),
+            scratch: Vec::new(),
             spread: Vec::new(),
             visit_start: Evaluation::worst(),
             round_start: Evaluation::worst(),
@@ -304,13 +307,18 @@ impl Cooperative {
                     self.x[i * len + k] = into_bound(bj, self.context[j] + noise);
                 }
             }
-            let candidate: Vec<f64> = self.x[row.clone()].to_vec();
+            let mut candidate = std::mem::take(&mut self.scratch);
+            candidate.clear();
+            candidate.extend_from_slice(&self.x[row.clone()]);
             let e = if i == 0 {
                 self.context_eval
             } else {
                 match self.evaluate_in_context(b, &candidate, ev) {
                     Some(e) => e,
-                    None => return,
+                    None => {
+                        self.scratch = candidate;
+                        return;
+                    }
                 }
             };
             self.pbest[row].copy_from_slice(&candidate);
@@ -320,6 +328,7 @@ impl Cooperative {
                 self.gbest_eval = e;
             }
             self.offer_context(b, &candidate, e);
+            self.scratch = candidate;
         }
     }
 
