@@ -424,3 +424,45 @@ fn anytime_stops_at_the_first_feasible_plan_or_at_the_time_limit() {
         .code(2)
         .stderr(predicates::str::contains("--time-limit: expected seconds"));
 }
+
+#[test]
+fn exporting_an_infeasible_plan_warns_and_the_files_say_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = swarmplan()
+        .args([
+            "plan",
+            "--scenario",
+            "tiny",
+            "--iterations",
+            "2",
+            "--population",
+            "6",
+        ])
+        .args(["--seed", "1", "--no-figures", "--export", "geojson,kml,csv"])
+        .arg("--origin=-10.5,105.6")
+        .arg("--out")
+        .arg(dir.path())
+        .assert()
+        .success();
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert!(
+        stderr.contains("warning: exporting a plan that is INFEASIBLE: "),
+        "{stderr}"
+    );
+    let mut seen = 0;
+    for entry in std::fs::read_dir(dir.path()).unwrap() {
+        let p = entry.unwrap().path();
+        let ext = p.extension().and_then(|e| e.to_str()).unwrap_or_default();
+        let name = p.file_name().and_then(|n| n.to_str()).unwrap_or_default();
+        if ["geojson", "kml", "csv"].contains(&ext) && name != "convergence.csv" {
+            let text = std::fs::read_to_string(&p).unwrap();
+            assert!(
+                text.contains("WARNING, the plan is INFEASIBLE: "),
+                "{}",
+                p.display()
+            );
+            seen += 1;
+        }
+    }
+    assert!(seen >= 3, "{seen} export files found");
+}

@@ -66,6 +66,9 @@ fn write_all(
     out: &Path,
 ) -> Result<Vec<PathBuf>> {
     let mission = Mission::new(world, plan, frame)?;
+    if let Some(v) = &mission.infeasible {
+        eprintln!("warning: exporting a plan that is {v}; the files say so in their description (WPL has none)");
+    }
     let mut files = Vec::new();
     for f in formats {
         files.extend(write_mission(&mission, *f, out)?);

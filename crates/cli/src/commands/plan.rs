@@ -166,28 +166,6 @@ impl std::fmt::Display for Infeasible {
 
 impl std::error::Error for Infeasible {}
 
-/// The verdict line: `FEASIBLE` or `INFEASIBLE: N violations (kind n, ...)`.
-#[must_use]
-pub fn verdict(a: &swarmplan_core::cost::Assessment) -> String {
-    let list = a.violations.as_deref().unwrap_or_default();
-    if a.feasible() {
-        return "FEASIBLE: no hard constraint violated".into();
-    }
-    let mut counts = std::collections::BTreeMap::new();
-    for v in list {
-        *counts.entry(v.kind).or_insert(0_usize) += 1;
-    }
-    let by_kind: Vec<String> = counts
-        .iter()
-        .map(|(k, n)| format!("{} {n}", k.name()))
-        .collect();
-    format!(
-        "INFEASIBLE: {} violations ({})",
-        list.len(),
-        by_kind.join(", ")
-    )
-}
-
 /// Budget and algorithm settings, shared by `plan` and `bench`.
 #[derive(Debug, Clone, Args)]
 pub struct SettingsArgs {
@@ -420,7 +398,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             println!("wrote {} (and .svg)", f.display());
         }
     }
-    let line = verdict(a);
+    let line = a.verdict();
     if args.json {
         eprintln!("{line}");
     } else {

@@ -69,6 +69,29 @@ impl Assessment {
         self.violation == 0.0
     }
 
+    /// One line for humans: `FEASIBLE: ...` or `INFEASIBLE: N violations (kind n, ...)`
+    /// (the counts need the violation list, i.e. an assessment made with `report`).
+    #[must_use]
+    pub fn verdict(&self) -> String {
+        if self.feasible() {
+            return "FEASIBLE: no hard constraint violated".into();
+        }
+        let list = self.violations.as_deref().unwrap_or_default();
+        let mut counts = std::collections::BTreeMap::new();
+        for v in list {
+            *counts.entry(v.kind).or_insert(0_usize) += 1;
+        }
+        let by_kind: Vec<String> = counts
+            .iter()
+            .map(|(k, n)| format!("{} {n}", k.name()))
+            .collect();
+        format!(
+            "INFEASIBLE: {} violations ({})",
+            list.len(),
+            by_kind.join(", ")
+        )
+    }
+
     /// Cost per UAV, as the paper's tables report it.
     #[must_use]
     pub fn per_uav_cost(&self) -> f64 {

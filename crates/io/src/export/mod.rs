@@ -184,6 +184,9 @@ pub struct Mission {
     pub threats: Vec<MissionThreat>,
     /// UGV0's position on the ground (altitude = ground AMSL).
     pub goal: Geodetic,
+    /// `None` for a feasible plan; else the verdict (`INFEASIBLE: N violations (...)`),
+    /// which every format with a description records (QGC, GeoJSON, KML, CSV).
+    pub infeasible: Option<String>,
 }
 
 impl Mission {
@@ -266,6 +269,10 @@ impl Mission {
             paths,
             threats,
             goal: frame.to_geodetic(DVec3::new(g.x, g.y, world.terrain.height(g.x, g.y)))?,
+            infeasible: {
+                let a = swarmplan_core::cost::assess(world, plan, true);
+                (!a.feasible()).then(|| a.verdict())
+            },
         })
     }
 
@@ -278,9 +285,13 @@ impl Mission {
             .chars()
             .map(|c| if c.is_control() { ' ' } else { c })
             .collect();
+        let verdict = self
+            .infeasible
+            .as_ref()
+            .map_or(String::new(), |v| format!("; WARNING, the plan is {v}"));
         format!(
             "swarmplan mission, scenario `{name}`; WGS 84 latitude and longitude in degrees; \
-             {ALTITUDE_REFERENCE}; frame: {}",
+             {ALTITUDE_REFERENCE}; frame: {}{verdict}",
             self.frame
         )
     }
