@@ -114,20 +114,7 @@ fn plan_writes_files_that_evaluate_reads_back_with_the_same_cost() {
 #[test]
 fn evaluate_refuses_a_plan_made_for_other_terrain_or_another_scenario() {
     let dir = tempfile::tempdir().unwrap();
-    swarmplan()
-        .args([
-            "plan",
-            "--scenario",
-            "tiny",
-            "--iterations",
-            "2",
-            "--population",
-            "6",
-        ])
-        .args(["--no-figures", "--out"])
-        .arg(dir.path())
-        .assert()
-        .success();
+    common::plan_folder(dir.path(), &["--no-figures"]);
     let plan_path = dir.path().join("plan.json");
     let mut plan = json(&std::fs::read(&plan_path).unwrap());
     assert_eq!(plan["scenario"], "tiny");
