@@ -178,7 +178,13 @@ pub struct Cooperative {
 
 impl Cooperative {
     #[must_use]
+    /// A population below 2 (which validation refuses) is raised to 2 rather than
+    /// panicking, as for the other optimizers.
     pub fn new(params: CoopParams) -> Self {
+        let params = CoopParams {
+            population: params.population.max(2),
+            ..params
+        };
         Self {
             params,
             dim: 0,
@@ -533,6 +539,24 @@ mod tests {
             &mut |_| {},
         );
         assert_eq!(never.restarts(), 0);
+    }
+
+    #[test]
+    fn an_unvalidated_population_of_zero_does_not_panic() {
+        let p = Constrained(vec![Bound::new(-5.0, 5.0); 6]);
+        let mut opt = Cooperative::new(CoopParams {
+            population: 0,
+            ..CoopParams::DEFAULT
+        });
+        let out = solve(
+            &p,
+            &mut opt,
+            Budget::evaluations(200),
+            &mut rng_from_seed(1),
+            &mut |_| {},
+        );
+        assert_eq!(out.evaluations, 200);
+        assert!(out.best.cost.is_finite());
     }
 
     #[test]
