@@ -17,6 +17,8 @@ pub(crate) enum Shape {
     Square,
     /// A circle outline with a cross inside (out-of-contact mark).
     RingCross,
+    /// A filled diamond with a dark outline (a violated constraint).
+    Diamond,
 }
 
 /// One row of a legend.
@@ -99,6 +101,21 @@ pub(crate) fn draw_shape<DB: DrawingBackend>(
         Shape::RingCross => {
             area.draw(&Circle::new(c, r + 2, crate::style::OUT.stroke_width(w)))?;
             area.draw(&Cross::new(c, r - 1, colour.stroke_width(w)))
+        }
+        Shape::Diamond => {
+            let pts = vec![
+                (c.0, c.1 - r),
+                (c.0 + r, c.1),
+                (c.0, c.1 + r),
+                (c.0 - r, c.1),
+            ];
+            area.draw(&Polygon::new(pts.clone(), colour.filled()))?;
+            let mut ring = pts;
+            ring.push((c.0, c.1 - r));
+            area.draw(&PathElement::new(
+                ring,
+                crate::style::VIOLATION_TEXT.stroke_width(s.px(1.5)),
+            ))
         }
     }
 }

@@ -7,7 +7,7 @@
 //!
 //! | function | file | shows |
 //! |---|---|---|
-//! | [`top_view`] | `top_view.rs` | relief, contours, threats, ground nodes, paths, outages, equal aspect |
+//! | [`top_view`] | `top_view.rs` | relief, contours, threats, ground nodes, paths, outages, violations, equal aspect |
 //! | [`view_3d`] | `view_3d.rs` | terrain surface, threat cylinders, paths at absolute altitude |
 //! | [`convergence_run`] | `convergence_run.rs` | best cost per iteration of one run (total, per UAV) |
 //! | [`convergence_bench`] | `convergence_bench.rs` | median and inter-quartile band per algorithm |
@@ -33,6 +33,7 @@ mod stats;
 mod style;
 mod top_view;
 mod view_3d;
+mod violation_marks;
 
 pub use bench_boxplots::bench_boxplots;
 pub use comm_timeline::comm_timeline;

@@ -128,6 +128,10 @@ pub(crate) const INTERFERENCE: RGBColor = RGBColor(120, 60, 200);
 pub(crate) const DIRECT: RGBColor = RGBColor(60, 170, 80);
 pub(crate) const RELAYED: RGBColor = RGBColor(240, 180, 30);
 pub(crate) const OUT: RGBColor = RGBColor(215, 40, 40);
+/// Violated constraints: signal yellow outlined in near black, unlike any UAV, threat or
+/// terrain colour.
+pub(crate) const VIOLATION: RGBColor = RGBColor(255, 214, 0);
+pub(crate) const VIOLATION_TEXT: RGBColor = RGBColor(40, 30, 0);
 pub(crate) const GRID: RGBColor = RGBColor(200, 200, 200);
 
 /// The terrain colour map at `t` in [0, 1] (low to high): muted green, sand, light brown,

@@ -20,6 +20,7 @@ use crate::legend::{self, draw_shape, Entry, Shape};
 use crate::render::{render, DrawResult, Figure, PlotError, Target, Written};
 use crate::sampling::ContactTrace;
 use crate::style::{self, Scale, FONT};
+use crate::violation_marks::ViolationMarks;
 
 /// Writes the top view of `plan` in `world` to `out` (PNG and SVG). `title` should name the
 /// scenario, algorithm and seed.
@@ -43,6 +44,7 @@ struct TopView<'a> {
     plan: &'a Plan,
     title: &'a str,
     trace: ContactTrace,
+    marks: ViolationMarks,
     x: (f64, f64),
     y: (f64, f64),
     /// Terrain height range of the colour map.
@@ -86,6 +88,7 @@ impl<'a> TopView<'a> {
             plan,
             title,
             trace: ContactTrace::new(world, plan),
+            marks: ViolationMarks::new(world, plan),
             x,
             y,
             h,
@@ -139,6 +142,23 @@ impl<'a> TopView<'a> {
             Shape::RingCross,
             RGBColor(60, 60, 60),
         ));
+        if !self.marks.segments.is_empty() {
+            e.push(Entry::line(
+                "violating segment",
+                style::VIOLATION,
+                s.px(9.0),
+            ));
+        }
+        if !self.marks.places.is_empty() {
+            e.push(Entry::marker(
+                "violation (kind)",
+                Shape::Diamond,
+                style::VIOLATION,
+            ));
+        }
+        if let Some(note) = self.marks.unplaced_note() {
+            e.push(Entry::Note(note));
+        }
         e.push(Entry::patch(
             "threat: r + size",
             style::THREAT.mix(0.35),
@@ -323,6 +343,20 @@ impl Figure for TopView<'_> {
             )))?;
         }
 
+        // Violating segments: a wide halo under the path, drawn before the paths.
+        for seg in &self.marks.segments {
+            let [a, b] = seg.ends;
+            let ends = vec![(a.x, a.y), (b.x, b.y)];
+            chart.draw_series(std::iter::once(PathElement::new(
+                ends.clone(),
+                style::VIOLATION_TEXT.stroke_width(s.px(14.0)),
+            )))?;
+            chart.draw_series(std::iter::once(PathElement::new(
+                ends,
+                style::VIOLATION.stroke_width(s.px(10.0)),
+            )))?;
+        }
+
         for (i, path) in self.plan.uavs.iter().enumerate() {
             let c = style::uav_colour(i);
             let pts: Vec<(f64, f64)> = path.waypoints.iter().map(|p| (p.x, p.y)).collect();
@@ -350,6 +384,34 @@ impl Figure for TopView<'_> {
             ]);
             labels.reserve([tl.0, tl.1, tl.0 + w as i32, tl.1 + h as i32]);
             root.draw(&Text::new(g.name.clone(), tl, node_text.clone()))?;
+        }
+
+        // Other violations with a place: a diamond and its kind, labelled where free.
+        for place in &self.marks.places {
+            let at = chart.backend_coord(&(place.at.x, place.at.y));
+            draw_shape(root, at, s.off(7.0), Shape::Diamond, style::VIOLATION, s)?;
+            labels.reserve([
+                at.0 - s.off(8.0),
+                at.1 - s.off(8.0),
+                at.0 + s.off(8.0),
+                at.1 + s.off(8.0),
+            ]);
+        }
+        for place in &self.marks.places {
+            let at = chart.backend_coord(&(place.at.x, place.at.y));
+            let text: TextStyle = (FONT, s.font(15.0))
+                .into_font()
+                .color(&style::VIOLATION_TEXT);
+            let (w, h) = root.estimate_text_size(&place.label, &text)?;
+            if let Some(tl) = labels.place(at, (w as i32, h as i32), s) {
+                let pad = s.off(2.0);
+                let rect = [
+                    (tl.0 - pad, tl.1 - pad),
+                    (tl.0 + w as i32 + pad, tl.1 + h as i32 + pad),
+                ];
+                root.draw(&Rectangle::new(rect, WHITE.mix(0.8).filled()))?;
+                root.draw(&Text::new(place.label.clone(), tl, text))?;
+            }
         }
 
         // Outages: a mark at every step out of contact; one label per outage with its

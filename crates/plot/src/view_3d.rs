@@ -19,6 +19,7 @@ use crate::axis::{format_value, Axis};
 use crate::legend::{self, Entry, Shape};
 use crate::render::{render, DrawResult, Figure, PlotError, Target, Written};
 use crate::style::{self, Scale, FONT};
+use crate::violation_marks::ViolationMarks;
 
 /// Writes the 3-D view of `plan` in `world` to `out` (PNG and SVG).
 pub fn view_3d(
@@ -43,6 +44,7 @@ struct View3d<'a> {
     plan: &'a Plan,
     title: &'a str,
     timed: TimedPlan,
+    marks: ViolationMarks,
     x: (f64, f64),
     y: (f64, f64),
     /// Altitude range of the chart.
@@ -72,6 +74,7 @@ impl<'a> View3d<'a> {
             plan,
             title,
             timed,
+            marks: ViolationMarks::new(world, plan),
             x,
             y,
             alt: (alt.0, top),
@@ -150,6 +153,21 @@ impl<'a> View3d<'a> {
                 Shape::Square
             };
             e.push(Entry::marker(g.name.clone(), shape, BLACK));
+        }
+        if !self.marks.is_empty() {
+            e.push(Entry::line(
+                "violating segment",
+                style::VIOLATION,
+                s.px(9.0),
+            ));
+            e.push(Entry::marker(
+                "violation (kind)",
+                Shape::Diamond,
+                style::VIOLATION,
+            ));
+        }
+        if let Some(note) = self.marks.unplaced_note() {
+            e.push(Entry::Note(note));
         }
         e.push(Entry::Note(String::new()));
         e.push(Entry::Note("x: east, m; y: north, m".into()));
@@ -337,6 +355,18 @@ impl Figure for View3d<'_> {
             }
         }
 
+        for seg in &self.marks.segments {
+            let ends: Vec<(f64, f64, f64)> = seg.ends.iter().map(|q| (q.x, q.z, q.y)).collect();
+            chart.draw_series(std::iter::once(PathElement::new(
+                ends.clone(),
+                style::VIOLATION_TEXT.stroke_width(s.px(12.0)),
+            )))?;
+            chart.draw_series(std::iter::once(PathElement::new(
+                ends,
+                style::VIOLATION.stroke_width(s.px(8.0)),
+            )))?;
+        }
+
         for (i, p) in self.timed.paths.iter().enumerate() {
             let c = style::uav_colour(i);
             let pts: Vec<(f64, f64, f64)> = p.abs.iter().map(|q| (q.x, q.z, q.y)).collect();
@@ -367,6 +397,22 @@ impl Figure for View3d<'_> {
                 g.name.clone(),
                 (at.0 + s.off(10.0), at.1 - s.off(6.0)),
                 text.clone(),
+            ))?;
+        }
+
+        let label = (FONT, s.font(15.0))
+            .into_font()
+            .color(&style::VIOLATION_TEXT)
+            .pos(Pos::new(HPos::Left, VPos::Bottom));
+        for place in &self.marks.places {
+            let at = chart
+                .as_coord_spec()
+                .translate(&(place.at.x, place.at.z, place.at.y));
+            legend::draw_shape(root, at, s.off(7.0), Shape::Diamond, style::VIOLATION, s)?;
+            root.draw(&Text::new(
+                place.label.clone(),
+                (at.0 + s.off(9.0), at.1 - s.off(5.0)),
+                label.clone(),
             ))?;
         }
 

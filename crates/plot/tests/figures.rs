@@ -269,3 +269,37 @@ fn failures_name_the_file() {
     .unwrap_err();
     assert!(matches!(e, PlotError::TooSmall { .. }), "{e}");
 }
+
+#[test]
+fn an_infeasible_plan_has_its_violations_marked() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = tiny();
+    let plan = plan(&world);
+    let violations = swarmplan_core::feasibility::check(&world, &plan);
+    assert!(
+        violations
+            .iter()
+            .any(|v| v.kind != swarmplan_core::feasibility::ViolationKind::Comm),
+        "the golden-ratio plan should break something besides contact: {violations:?}"
+    );
+    for (name, w) in [
+        (
+            "top",
+            top_view(&world, &plan, "t", dir.path().join("top")).unwrap(),
+        ),
+        (
+            "3d",
+            view_3d(&world, &plan, "t", dir.path().join("3d")).unwrap(),
+        ),
+    ] {
+        // The signal yellow of the violation marks (style::VIOLATION) is on the picture.
+        let img = image::open(&w.png).unwrap().to_rgb8();
+        let yellow = img.pixels().filter(|p| p.0 == [255, 214, 0]).count();
+        assert!(yellow > 50, "{name}: {yellow} violation-yellow pixels");
+        let svg = std::fs::read_to_string(&w.svg).unwrap();
+        assert!(
+            svg.contains("violation (kind)"),
+            "{name}: legend entry missing"
+        );
+    }
+}
