@@ -9,4 +9,5 @@ pub mod record;
 pub mod runner;
 pub mod stats;
 pub mod store;
+pub mod suite;
 pub mod summary;

@@ -40,6 +40,66 @@ pub struct GenerateRequest {
     pub terrain: Option<String>,
 }
 
+impl GenerateRequest {
+    /// The scenario's name, `gen-sK-uN-tM[-wW][-shared]`, from which [`Self::from_name`]
+    /// gets the request back: a generated scenario can be named wherever a built-in one can
+    /// (`plan --scenario gen-s3-u8-t12-w1`, `bench --scenarios`, suites), and a record's
+    /// scenario name is enough to rebuild it. Only procedural-terrain requests have names
+    /// that rebuild them (a DEM path is not part of the name).
+    #[must_use]
+    pub fn name(&self) -> String {
+        let mut name = format!("gen-s{}-u{}-t{}", self.seed, self.uavs, self.threats);
+        if self.comm_windows > 0 {
+            name.push_str(&format!("-w{}", self.comm_windows));
+        }
+        if self.shared_start {
+            name.push_str("-shared");
+        }
+        name
+    }
+
+    /// The request named `name` (see [`Self::name`]), or `None` when `name` is not of that
+    /// form.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        let mut parts = name.strip_prefix("gen-")?.split('-');
+        let mut number = |tag: char| -> Option<u64> {
+            let p = parts.next()?;
+            let digits = p.strip_prefix(tag)?;
+            if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+                return None;
+            }
+            digits.parse().ok()
+        };
+        let seed = number('s')?;
+        let uavs = usize::try_from(number('u')?).ok()?;
+        let threats = usize::try_from(number('t')?).ok()?;
+        let mut req = Self {
+            seed,
+            uavs,
+            threats,
+            shared_start: false,
+            comm_windows: 0,
+            terrain: None,
+        };
+        for p in parts {
+            match p {
+                "shared" if !req.shared_start => req.shared_start = true,
+                w if w.starts_with('w') && req.comm_windows == 0 && !req.shared_start => {
+                    let digits = &w[1..];
+                    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+                        return None;
+                    }
+                    req.comm_windows = digits.parse().ok().filter(|&n| n > 0)?;
+                }
+                _ => return None,
+            }
+        }
+        // Only the canonical spelling names a request, so one scenario has one name.
+        (req.name() == name).then_some(req)
+    }
+}
+
 #[derive(Debug, Error)]
 pub enum GenerateError {
     #[error("--uavs: expected 1 to 1000, got {0}")]
@@ -81,13 +141,7 @@ pub fn generate(req: &GenerateRequest) -> Result<ScenarioSpec, GenerateError> {
     }
     let mut spec = load_spec("paper-case1")?.spec;
     let mut rng = rng_from_seed(derive_seed(req.seed, &["scenario-generate"], 0));
-    let name = format!(
-        "gen-s{}-u{}-t{}{}",
-        req.seed,
-        req.uavs,
-        req.threats,
-        if req.shared_start { "-shared" } else { "" }
-    );
+    let name = req.name();
     spec.description = format!(
         "generated: seed {}, {} UAVs, {} threats, {} start{}",
         req.seed,
@@ -232,6 +286,34 @@ mod tests {
             shared_start: false,
             comm_windows: 1,
             terrain: None,
+        }
+    }
+
+    #[test]
+    fn names_give_the_request_back() {
+        for (seed, uavs, threats, windows, shared) in
+            [(3, 8, 12, 1, false), (1, 20, 0, 0, true), (17, 5, 30, 2, true)]
+        {
+            let req = GenerateRequest {
+                comm_windows: windows,
+                shared_start: shared,
+                ..request(seed, uavs, threats)
+            };
+            let name = req.name();
+            assert_eq!(GenerateRequest::from_name(&name), Some(req.clone()), "{name}");
+            assert_eq!(generate(&req).unwrap().name, name);
+        }
+        for bad in [
+            "gen-s1-u8",
+            "gen-s1-u8-t",
+            "gen-s1-u8-t12-x",
+            "gen-s01-u8-t12",
+            "gen-s1-u8-t12-w0",
+            "gen-s1-u8-t12-shared-w1",
+            "gen-s-1-u8-t12",
+            "paper-case1",
+        ] {
+            assert_eq!(GenerateRequest::from_name(bad), None, "{bad}");
         }
     }
 

@@ -37,7 +37,7 @@ pub const BUILTIN: [(&str, &str); 5] = [
 
 #[derive(Debug, Error)]
 pub enum ScenarioError {
-    #[error("no built-in scenario and no file named `{name}`; built-in scenarios: {}", builtin_names().join(", "))]
+    #[error("no built-in scenario and no file named `{name}`; built-in scenarios: {}; generated ones are named gen-sSEED-uUAVS-tTHREATS[-wWINDOWS][-shared]", builtin_names().join(", "))]
     Unknown { name: String },
     #[error("{path}: cannot read: {source}")]
     Read {
@@ -52,6 +52,8 @@ pub enum ScenarioError {
     Procedural { origin: String, message: String },
     #[error("{origin}: terrain: {source}")]
     Terrain { origin: String, source: DemError },
+    #[error("generated scenario `{name}`: {message}")]
+    Generated { name: String, message: String },
 }
 
 /// Names of the built-in scenarios.
@@ -72,7 +74,9 @@ pub struct LoadedSpec {
     pub text: String,
 }
 
-/// Reads a built-in scenario by name, or a scenario file by path.
+/// Reads a built-in scenario by name, a generated one by its name
+/// ([`crate::generate::GenerateRequest::name`], e.g. `gen-s3-u8-t12-w1`), or a scenario
+/// file by path.
 pub fn load_spec(name_or_path: &str) -> Result<LoadedSpec, ScenarioError> {
     if let Some((name, text)) = BUILTIN.iter().find(|(n, _)| *n == name_or_path) {
         let origin = format!("builtin:{name}");
@@ -81,6 +85,19 @@ pub fn load_spec(name_or_path: &str) -> Result<LoadedSpec, ScenarioError> {
             origin,
             base_dir: PathBuf::from("."),
             text: (*text).to_string(),
+        });
+    }
+    if let Some(req) = crate::generate::GenerateRequest::from_name(name_or_path) {
+        let spec =
+            crate::generate::generate(&req).map_err(|e| ScenarioError::Generated {
+                name: name_or_path.to_string(),
+                message: e.to_string(),
+            })?;
+        return Ok(LoadedSpec {
+            text: to_toml(&spec),
+            spec,
+            origin: format!("generated:{name_or_path}"),
+            base_dir: PathBuf::from("."),
         });
     }
     let path = Path::new(name_or_path);

@@ -14,6 +14,7 @@ use swarmplan_experiment::aggregate::aggregate;
 use swarmplan_experiment::matrix::{ExperimentSpec, ParamSet, Shard};
 use swarmplan_experiment::record::RunRecord;
 use swarmplan_experiment::runner::{run_experiment, RunnerOptions};
+use swarmplan_experiment::suite::{suite, suite_names};
 use swarmplan_experiment::summary::{csv, markdown, summarize_records, ExperimentSummary};
 
 use super::plan::{budget, load_params, SettingsArgs};
@@ -25,8 +26,12 @@ pub struct BenchArgs {
     #[arg(long)]
     pub experiment: Option<PathBuf>,
     /// Scenarios, comma-separated (default: paper-case1,paper-case2).
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', conflicts_with = "suite")]
     pub scenarios: Option<Vec<String>>,
+    /// A named suite of scenarios instead of --scenarios: paper, generated-8, generated-12,
+    /// generated-20 (20 generated instances each), generated (all 60).
+    #[arg(long)]
+    pub suite: Option<String>,
     /// Methods, comma-separated: presets or optimizer/encoding/init (default: the paper's
     /// six plus SPSO).
     #[arg(long = "methods", visible_alias = "algos", value_delimiter = ',')]
@@ -79,6 +84,11 @@ fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
     };
     if let Some(s) = &args.scenarios {
         spec.scenarios.clone_from(s);
+    }
+    if let Some(name) = &args.suite {
+        spec.scenarios = suite(name).ok_or_else(|| {
+            anyhow::anyhow!("--suite: expected one of {}, got `{name}`", suite_names())
+        })?;
     }
     if let Some(a) = &args.methods {
         spec.methods.clone_from(a);
