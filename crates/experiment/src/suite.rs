@@ -19,15 +19,22 @@ pub const GENERATED_WINDOWS: usize = 1;
 pub const GENERATED_SIZES: [usize; 3] = [8, 12, 20];
 
 /// A suite's name and what it holds, for `--help` and errors.
-pub const SUITES: [(&str, &str); 5] = [
+pub const SUITES: [(&str, &str); 6] = [
     ("paper", "paper-case1 and paper-case2"),
+    (
+        "outside",
+        "the 4 outside benchmark instances, 5 UAVs (needs ../shared/data/outside)",
+    ),
     (
         "generated-8",
         "20 generated instances, 8 UAVs, 12 threats, 1 interference window, spread starts",
     ),
     ("generated-12", "the same with 12 UAVs"),
     ("generated-20", "the same with 20 UAVs"),
-    ("generated", "generated-8, generated-12 and generated-20 (60 instances)"),
+    (
+        "generated",
+        "generated-8, generated-12 and generated-20 (60 instances)",
+    ),
 ];
 
 /// The generated instances with `uavs` UAVs (seeds 1 to [`GENERATED_INSTANCES`]).
@@ -50,6 +57,9 @@ fn generated(uavs: usize) -> impl Iterator<Item = String> {
 pub fn suite(name: &str) -> Option<Vec<String>> {
     let list: Vec<String> = match name {
         "paper" => vec!["paper-case1".into(), "paper-case2".into()],
+        "outside" => (0..swarmplan_io::outside::INSTANCES)
+            .map(|k| format!("outside-{k}"))
+            .collect(),
         "generated" => GENERATED_SIZES.into_iter().flat_map(generated).collect(),
         _ => {
             let uavs: usize = name.strip_prefix("generated-")?.parse().ok()?;

@@ -123,6 +123,16 @@ pub enum GenerateError {
     Template(#[from] ScenarioError),
 }
 
+/// Raises every UAV's battery to room for detours of 80 % over the straight start-goal
+/// line of `length` metres at cruise (about 9.2 J/m), within the usable share of the
+/// battery, so an instance is not infeasible by energy alone.
+pub(crate) fn size_batteries(spec: &mut ScenarioSpec, length: f64) {
+    for u in &mut spec.uavs {
+        let needed_wh = 1.8 * length * 9.24 / 3600.0 / (1.0 - u.reserve);
+        u.battery_wh = u.battery_wh.max((needed_wh * 10.0).ceil() / 10.0);
+    }
+}
+
 fn uniform(rng: &mut Rng, lo: f64, hi: f64) -> f64 {
     let u: f64 = rng.random();
     lo + u * (hi - lo)
@@ -257,12 +267,7 @@ pub fn generate(req: &GenerateRequest) -> Result<ScenarioSpec, GenerateError> {
             }
         })
         .collect();
-    // Room for detours of 80 % over the straight line at cruise (about 9.2 J/m), within the
-    // usable share of the battery.
-    let needed_wh = 1.8 * length * 9.24 / 3600.0 / (1.0 - template.reserve);
-    for u in &mut spec.uavs {
-        u.battery_wh = u.battery_wh.max((needed_wh * 10.0).ceil() / 10.0);
-    }
+    size_batteries(&mut spec, length);
     spec.planning.seed = 1;
     spec.validate().map_err(|e| {
         GenerateError::Template(ScenarioError::Invalid {
@@ -291,16 +296,22 @@ mod tests {
 
     #[test]
     fn names_give_the_request_back() {
-        for (seed, uavs, threats, windows, shared) in
-            [(3, 8, 12, 1, false), (1, 20, 0, 0, true), (17, 5, 30, 2, true)]
-        {
+        for (seed, uavs, threats, windows, shared) in [
+            (3, 8, 12, 1, false),
+            (1, 20, 0, 0, true),
+            (17, 5, 30, 2, true),
+        ] {
             let req = GenerateRequest {
                 comm_windows: windows,
                 shared_start: shared,
                 ..request(seed, uavs, threats)
             };
             let name = req.name();
-            assert_eq!(GenerateRequest::from_name(&name), Some(req.clone()), "{name}");
+            assert_eq!(
+                GenerateRequest::from_name(&name),
+                Some(req.clone()),
+                "{name}"
+            );
             assert_eq!(generate(&req).unwrap().name, name);
         }
         for bad in [

@@ -8,6 +8,7 @@ pub mod export;
 pub mod generate;
 pub mod geo;
 pub mod import;
+pub mod outside;
 pub mod plan_file;
 pub mod reference_data;
 pub mod scenario;

@@ -37,7 +37,7 @@ pub const BUILTIN: [(&str, &str); 5] = [
 
 #[derive(Debug, Error)]
 pub enum ScenarioError {
-    #[error("no built-in scenario and no file named `{name}`; built-in scenarios: {}; generated ones are named gen-sSEED-uUAVS-tTHREATS[-wWINDOWS][-shared]", builtin_names().join(", "))]
+    #[error("no built-in scenario and no file named `{name}`; built-in scenarios: {}; generated ones are named gen-sSEED-uUAVS-tTHREATS[-wWINDOWS][-shared], outside benchmark instances outside-K[-uUAVS]", builtin_names().join(", "))]
     Unknown { name: String },
     #[error("{path}: cannot read: {source}")]
     Read {
@@ -52,7 +52,7 @@ pub enum ScenarioError {
     Procedural { origin: String, message: String },
     #[error("{origin}: terrain: {source}")]
     Terrain { origin: String, source: DemError },
-    #[error("generated scenario `{name}`: {message}")]
+    #[error("scenario `{name}`: {message}")]
     Generated { name: String, message: String },
 }
 
@@ -88,15 +88,26 @@ pub fn load_spec(name_or_path: &str) -> Result<LoadedSpec, ScenarioError> {
         });
     }
     if let Some(req) = crate::generate::GenerateRequest::from_name(name_or_path) {
-        let spec =
-            crate::generate::generate(&req).map_err(|e| ScenarioError::Generated {
-                name: name_or_path.to_string(),
-                message: e.to_string(),
-            })?;
+        let spec = crate::generate::generate(&req).map_err(|e| ScenarioError::Generated {
+            name: name_or_path.to_string(),
+            message: e.to_string(),
+        })?;
         return Ok(LoadedSpec {
             text: to_toml(&spec),
             spec,
             origin: format!("generated:{name_or_path}"),
+            base_dir: PathBuf::from("."),
+        });
+    }
+    if let Some(spec) = crate::outside::load_named(name_or_path) {
+        let spec = spec.map_err(|e| ScenarioError::Generated {
+            name: name_or_path.to_string(),
+            message: e.to_string(),
+        })?;
+        return Ok(LoadedSpec {
+            text: to_toml(&spec),
+            spec,
+            origin: format!("outside:{name_or_path}"),
             base_dir: PathBuf::from("."),
         });
     }

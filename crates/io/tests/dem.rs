@@ -569,6 +569,27 @@ fn ascii_grid_first_row_is_north() {
 }
 
 #[test]
+fn gzip_compressed_grids_read_like_plain_ones() {
+    use std::io::Write as _;
+    let dir = TempDir::new("asc-gz");
+    let text = "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 5\n1 2 3\n4 5 6\n";
+    let plain = read_asc(&dir, "g.asc", text, &DemOptions::default()).expect("reads");
+    let gz = dir.path("g.asc.gz");
+    let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
+    enc.write_all(text.as_bytes()).unwrap();
+    std::fs::write(&gz, enc.finish().unwrap()).unwrap();
+    let packed = read_terrain(&gz, &DemOptions::default()).expect("reads .asc.gz");
+    assert_eq!(packed.format, DemFormat::EsriAscii);
+    assert_eq!(packed.terrain.fingerprint(), plain.terrain.fingerprint());
+    // A gzip stream cut short is an error naming the file, not a panic.
+    let bytes = std::fs::read(&gz).unwrap();
+    let cut = dir.path("cut.asc.gz");
+    std::fs::write(&cut, &bytes[..bytes.len() / 2]).unwrap();
+    let e = read_terrain(&cut, &DemOptions::default()).expect_err("truncated gzip");
+    assert!(e.to_string().contains("cut.asc.gz"), "{e}");
+}
+
+#[test]
 fn ascii_grid_header_variants() {
     let dir = TempDir::new("asc-var");
     // Centre registration, dx/dy, odd case, a row wrapped over two lines, blank lines,

@@ -28,8 +28,9 @@ pub struct BenchArgs {
     /// Scenarios, comma-separated (default: paper-case1,paper-case2).
     #[arg(long, value_delimiter = ',', conflicts_with = "suite")]
     pub scenarios: Option<Vec<String>>,
-    /// A named suite of scenarios instead of --scenarios: paper, generated-8, generated-12,
-    /// generated-20 (20 generated instances each), generated (all 60).
+    /// A named suite of scenarios instead of --scenarios: paper, outside (the 4 outside
+    /// benchmark instances), generated-8, generated-12, generated-20 (20 generated
+    /// instances each), generated (all 60).
     #[arg(long)]
     pub suite: Option<String>,
     /// Methods, comma-separated: presets or optimizer/encoding/init (default: the paper's
@@ -122,6 +123,24 @@ fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
     Ok(spec)
 }
 
+/// Spacing of progress lines when stderr is not a terminal.
+const LOG_EVERY: std::time::Duration = std::time::Duration::from_secs(30);
+
+/// Counts behind the progress lines.
+#[derive(Default)]
+struct LogLines {
+    done: u64,
+    feasible: u64,
+    next_line: std::time::Duration,
+}
+
+impl LogLines {
+    fn record(&mut self, feasible: bool) {
+        self.done += 1;
+        self.feasible += u64::from(feasible);
+    }
+}
+
 pub fn run_bench(args: &BenchArgs) -> Result<()> {
     let spec = experiment(args)?;
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?;
@@ -147,7 +166,8 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
         shard.map_or(String::new(), |s| format!(", shard {}/{}", s.index, s.count)),
         args.out.display()
     );
-    let bar = if std::io::stderr().is_terminal() {
+    let terminal = std::io::stderr().is_terminal();
+    let bar = if terminal {
         ProgressBar::new(0)
     } else {
         ProgressBar::hidden()
@@ -158,9 +178,35 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
     );
     let started = Instant::now();
     let mut start = |pending: usize| bar.set_length(pending as u64);
+    // Off a terminal (a log file, a cluster job): a line every LOG_EVERY with the count,
+    // the feasible share so far and an estimate of the time left.
+    let log = std::sync::Mutex::new(LogLines::default());
     let done = |r: &RunRecord| {
         bar.set_message(format!("{} {} #{}", r.scenario, r.method, r.run));
         bar.inc(1);
+        if !terminal {
+            let mut log = log
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner);
+            log.record(r.feasible);
+            let elapsed = started.elapsed();
+            if elapsed >= log.next_line {
+                log.next_line = elapsed + LOG_EVERY;
+                let total = bar.length().unwrap_or(0);
+                let left = total.saturating_sub(log.done) as f64;
+                let eta = elapsed.as_secs_f64() / log.done.max(1) as f64 * left;
+                eprintln!(
+                    "bench: {}/{total} runs, {} feasible, {:.0} s elapsed, about {:.0} s left; last {} {} #{}",
+                    log.done,
+                    log.feasible,
+                    elapsed.as_secs_f64(),
+                    eta,
+                    r.scenario,
+                    r.method,
+                    r.run
+                );
+            }
+        }
     };
     let outcome = run_experiment(&spec, &args.out, opts, &mut start, &done)?;
     bar.finish_and_clear();

@@ -2,7 +2,8 @@
 //!
 //! Formats: GeoTIFF (`.tif`, `.tiff`; one band of 8- to 64-bit integers or 16- to 64-bit
 //! floats, strips or tiles) and ESRI ASCII grid (`.asc`). The format is recognised by the
-//! file's first bytes (TIFF magic, or an ASCII-grid keyword), then by its extension.
+//! file's first bytes (TIFF magic, or an ASCII-grid keyword), then by its extension. Either
+//! may be gzip-compressed (`.asc.gz`, recognised by the gzip magic).
 //!
 //! Two frames turn raster cells into plan coordinates ([`DemFrame`]):
 //! - [`DemFrame::Georeferenced`] (for user files): x east, y north in metres, origin (0, 0)
@@ -239,13 +240,48 @@ pub fn read_terrain(path: &Path, opts: &DemOptions) -> Result<LoadedDem, DemErro
         path: path.into(),
         source,
     })?;
-    let format = sniff(path, &bytes)?;
+    let (bytes, named) = if bytes.starts_with(&GZIP_MAGIC) {
+        // `x.asc.gz` is sniffed as `x.asc`.
+        (gunzip(path, &bytes)?, path.with_extension(""))
+    } else {
+        (bytes, path.to_path_buf())
+    };
+    let format = sniff(&named, &bytes)?;
     let raw = match format {
         DemFormat::GeoTiff => geotiff::read(path, &bytes)?,
         DemFormat::EsriAscii => esri_ascii::read(path, &bytes)?,
     };
     drop(bytes);
     build(path, format, raw, *opts)
+}
+
+/// The first two bytes of a gzip stream (RFC 1952).
+const GZIP_MAGIC: [u8; 2] = [0x1f, 0x8b];
+
+/// Largest decompressed DEM, bytes: a 1 GiB grid is far beyond any map this planner flies,
+/// and the limit keeps a crafted file from filling the memory.
+const GUNZIP_LIMIT: u64 = 1 << 30;
+
+/// The decompressed content of the gzip file `path`.
+fn gunzip(path: &Path, bytes: &[u8]) -> Result<Vec<u8>, DemError> {
+    use std::io::Read as _;
+    let mut out = Vec::new();
+    flate2::read::MultiGzDecoder::new(bytes)
+        .take(GUNZIP_LIMIT + 1)
+        .read_to_end(&mut out)
+        .map_err(|e| DemError::Corrupt {
+            path: path.into(),
+            format: "gzip",
+            detail: e.to_string(),
+        })?;
+    if out.len() as u64 > GUNZIP_LIMIT {
+        return Err(DemError::Corrupt {
+            path: path.into(),
+            format: "gzip",
+            detail: format!("decompresses to more than {GUNZIP_LIMIT} bytes"),
+        });
+    }
+    Ok(out)
 }
 
 /// Recognises the format by magic bytes first, then by extension.

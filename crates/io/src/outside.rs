@@ -1,0 +1,186 @@
+//! The outside benchmark instances (`../shared/data/outside/outside-K.json` with
+//! `outside-K.asc.gz`) as swarmplan scenarios, loadable by name (`outside-0`,
+//! `outside-2-u8`) wherever a built-in scenario is.
+//!
+//! Why: a planner tuned on its own procedural maps may fail on terrain and threat layouts it
+//! has never seen. These instances come from the generator of Shehadeh & Kudela's UAV
+//! path-planning benchmark (arXiv 2501.14503, as packaged in MetaBox v2): 900 x 900 m of
+//! rugged terrain, 15-30 threats, one start and one goal. An instance gives only the
+//! geometry; the fleet, channel, energy model and objective are `paper-case1`'s (as for
+//! `scenario generate`), all UAVs share the instance's start (the paper's setting), UGV0
+//! waits at its goal, and batteries are sized for detours of 80 % over the straight line.
+//! Threats keep their axis and radius; their drawn height is the template's (the model's
+//! cylinders are unbounded in height, and the instance's drawn heights go below zero).
+//! The terrain is read in the `spso-pixels` frame the data's README states.
+
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+use swarmplan_core::world::spec::{ScenarioSpec, TerrainFrame};
+use swarmplan_core::world::terrain::Sampling;
+use swarmplan_core::world::threat::Threat;
+use thiserror::Error;
+
+use crate::generate::size_batteries;
+use crate::reference_data::shared_dir;
+use crate::scenario::{load_spec, ScenarioError};
+
+/// UAVs of an outside scenario named without `-uN` (the paper's fleet).
+pub const DEFAULT_UAVS: usize = 5;
+
+/// Instances in the shared folder (`outside-0` to `outside-3`).
+pub const INSTANCES: usize = 4;
+
+/// An instance file as the outside generator writes it.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Instance {
+    /// [x, y, drawn height, r] per vertical cylinder.
+    threats_x_y_height_r: Vec<[f64; 4]>,
+    /// [x, y, z AGL].
+    start: [f64; 3],
+    goal: [f64; 3],
+    /// [columns, rows] of the terrain grid (1 m cells).
+    map: [usize; 2],
+}
+
+#[derive(Debug, Error)]
+pub enum OutsideError {
+    #[error("{}: cannot read: {source} (the outside instances are in ../shared/data/outside beside the checkout, or in $SWARMPLAN_SHARED/data/outside)", .path.display())]
+    Read {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("{}: not an outside instance: {message}", .path.display())]
+    Parse { path: PathBuf, message: String },
+    #[error("{}: no terrain beside it (looked for {})", .path.display(), .looked.display())]
+    NoTerrain { path: PathBuf, looked: PathBuf },
+    #[error("{name}: expected 1 to 1000 UAVs")]
+    Uavs { name: String },
+    #[error(transparent)]
+    Template(#[from] Box<ScenarioError>),
+}
+
+/// The scenario name `outside-K[-uN]` as (instance file stem, UAVs), or `None`.
+#[must_use]
+pub fn parse_name(name: &str) -> Option<(String, usize)> {
+    let rest = name.strip_prefix("outside-")?;
+    let (k, uavs) = match rest.split_once("-u") {
+        Some((k, n)) => (k, n),
+        None => (rest, ""),
+    };
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    if !digits(k) || (!uavs.is_empty() && !digits(uavs)) {
+        return None;
+    }
+    let n = if uavs.is_empty() {
+        DEFAULT_UAVS
+    } else {
+        uavs.parse().ok()?
+    };
+    let canonical = if n == DEFAULT_UAVS {
+        format!("outside-{k}")
+    } else {
+        format!("outside-{k}-u{n}")
+    };
+    (canonical == name && (k == "0" || !k.starts_with('0'))).then(|| (format!("outside-{k}"), n))
+}
+
+/// The file of instance `stem` in the shared folder.
+#[must_use]
+pub fn instance_path(stem: &str) -> PathBuf {
+    shared_dir()
+        .join("data/outside")
+        .join(format!("{stem}.json"))
+}
+
+/// The scenario named `name` (`outside-K[-uN]`) from the shared folder, or `None` when the
+/// name is not of that form.
+pub fn load_named(name: &str) -> Option<Result<ScenarioSpec, OutsideError>> {
+    let (stem, uavs) = parse_name(name)?;
+    Some(from_instance(&instance_path(&stem), uavs, name))
+}
+
+/// The scenario of instance file `path` with `uavs` UAVs, named `name`.
+pub fn from_instance(path: &Path, uavs: usize, name: &str) -> Result<ScenarioSpec, OutsideError> {
+    if uavs == 0 || uavs > 1000 {
+        return Err(OutsideError::Uavs { name: name.into() });
+    }
+    let text = std::fs::read_to_string(path).map_err(|source| OutsideError::Read {
+        path: path.into(),
+        source,
+    })?;
+    let inst: Instance = serde_json::from_str(&text).map_err(|e| OutsideError::Parse {
+        path: path.into(),
+        message: e.to_string(),
+    })?;
+    let terrain = [path.with_extension("asc.gz"), path.with_extension("asc")]
+        .into_iter()
+        .find(|p| p.exists())
+        .ok_or_else(|| OutsideError::NoTerrain {
+            path: path.into(),
+            looked: path.with_extension("asc.gz"),
+        })?;
+
+    let mut spec = load_spec("paper-case1").map_err(Box::new)?.spec;
+    spec.name = name.into();
+    spec.description = format!(
+        "outside benchmark instance {} (Shehadeh & Kudela's generator): {} threats, {} UAVs from one start",
+        path.display(),
+        inst.threats_x_y_height_r.len(),
+        uavs
+    );
+    spec.terrain.source = terrain.display().to_string();
+    spec.terrain.frame = TerrainFrame::SpsoPixels;
+    spec.terrain.sampling = Sampling::Bilinear;
+    spec.map.x = [1.0, inst.map[0] as f64];
+    spec.map.y = [1.0, inst.map[1] as f64];
+    let draw = spec.threats.first().map_or(150.0, |t| t.z);
+    spec.threats = inst
+        .threats_x_y_height_r
+        .iter()
+        .map(|&[x, y, _, r]| Threat { x, y, z: draw, r })
+        .collect();
+    let template = spec.uavs.first().copied().unwrap_or_default();
+    spec.uavs = vec![
+        swarmplan_core::world::spec::UavSpec {
+            start: inst.start,
+            ..template
+        };
+        uavs
+    ];
+    spec.goal.position = inst.goal;
+    spec.communication.interference.clear();
+    let length = (inst.goal[0] - inst.start[0]).hypot(inst.goal[1] - inst.start[1]);
+    size_batteries(&mut spec, length);
+    spec.validate().map_err(|e| {
+        Box::new(ScenarioError::Invalid {
+            origin: path.display().to_string(),
+            source: e.into(),
+        })
+    })?;
+    Ok(spec)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names() {
+        assert_eq!(parse_name("outside-0"), Some(("outside-0".into(), 5)));
+        assert_eq!(parse_name("outside-3-u12"), Some(("outside-3".into(), 12)));
+        for bad in [
+            "outside-",
+            "outside-x",
+            "outside-01",
+            "outside-1-u",
+            "outside-1-u5",
+            "outside-1-u05",
+            "outside-1-v3",
+            "inside-1",
+        ] {
+            assert_eq!(parse_name(bad), None, "{bad}");
+        }
+    }
+}
