@@ -77,6 +77,15 @@ pub struct CoopParams {
     pub restart_after: usize,
     /// Budget fraction from which restarts stop and the best plan so far is refined (0.7).
     pub refine_from: f64,
+    /// Compare candidates by Deb's feasibility rules (true) or by penalised cost alone
+    /// (false; an ablation, docs/results.md).
+    pub feasibility_first: bool,
+    /// Adapt each block's spread per visit (true) or keep `perturbation` (false; an
+    /// ablation).
+    pub adaptive_spread: bool,
+    /// Search one UAV at a time (true) or the whole plan as one block (false; an ablation:
+    /// a restarting PSO on the joint vector).
+    pub decompose: bool,
 }
 
 impl CoopParams {
@@ -90,6 +99,9 @@ impl CoopParams {
         fresh: 0.25,
         restart_after: 3,
         refine_from: 0.7,
+        feasibility_first: true,
+        adaptive_spread: true,
+        decompose: true,
     };
 
     pub fn validate(&self) -> Result<(), ParamsError> {
@@ -136,6 +148,15 @@ impl CoopParams {
 impl Default for CoopParams {
     fn default() -> Self {
         Self::DEFAULT
+    }
+}
+
+/// `a` better than `b` under `params`' comparison.
+fn better(params: CoopParams, a: &Evaluation, b: &Evaluation) -> bool {
+    if params.feasibility_first {
+        a.better_feasibility_first(b)
+    } else {
+        a.better_than(b)
     }
 }
 
@@ -211,6 +232,11 @@ impl Cooperative {
         }
     }
 
+    /// The comparison of the run: feasibility first, or penalised cost (an ablation).
+    fn better(&self, a: &Evaluation, b: &Evaluation) -> bool {
+        better(self.params, a, b)
+    }
+
     /// Restarts so far.
     #[must_use]
     pub fn restarts(&self) -> u64 {
@@ -227,7 +253,7 @@ impl Cooperative {
         for i in 0..self.params.population.max(1) {
             ev.sample_initial(rng, &mut x);
             let Some(e) = ev.evaluate(&x) else { break };
-            if i == 0 || e.better_feasibility_first(&self.context_eval) {
+            if i == 0 || self.better(&e, &self.context_eval) {
                 self.context.copy_from_slice(&x);
                 self.context_eval = e;
             }
@@ -239,7 +265,7 @@ impl Cooperative {
 
     /// Remembers the context if it is the best ever.
     fn keep_best(&mut self) {
-        if self.best.is_empty() || self.context_eval.better_feasibility_first(&self.best_eval) {
+        if self.best.is_empty() || self.better(&self.context_eval, &self.best_eval) {
             self.best.clone_from(&self.context);
             self.best_eval = self.context_eval;
         }
@@ -270,7 +296,7 @@ impl Cooperative {
 
     /// Offers a candidate block to the context (feasibility first).
     fn offer_context(&mut self, b: usize, x: &[f64], e: Evaluation) {
-        if e.better_feasibility_first(&self.context_eval) {
+        if self.better(&e, &self.context_eval) {
             let r = self.range(b);
             self.context[r].copy_from_slice(x);
             self.context_eval = e;
@@ -329,7 +355,7 @@ impl Cooperative {
             };
             self.pbest[row].copy_from_slice(&candidate);
             self.pbest_eval[i] = e;
-            if e.better_feasibility_first(&self.gbest_eval) {
+            if self.better(&e, &self.gbest_eval) {
                 self.gbest.copy_from_slice(&candidate);
                 self.gbest_eval = e;
             }
@@ -374,10 +400,10 @@ impl Cooperative {
             let Some(e) = self.evaluate_in_context(b, &candidate, ev) else {
                 return;
             };
-            if e.better_feasibility_first(&self.pbest_eval[i]) {
+            if self.better(&e, &self.pbest_eval[i]) {
                 self.pbest[i * len..(i + 1) * len].copy_from_slice(&candidate);
                 self.pbest_eval[i] = e;
-                if e.better_feasibility_first(&self.gbest_eval) {
+                if self.better(&e, &self.gbest_eval) {
                     self.gbest.copy_from_slice(&candidate);
                     self.gbest_eval = e;
                 }
@@ -396,7 +422,7 @@ impl Cooperative {
         self.round_start = self.context_eval;
         if ev.progress().fraction() >= self.params.refine_from {
             // Last phase: refine the best plan found instead of exploring anew.
-            if self.best_eval.better_feasibility_first(&self.context_eval) {
+            if self.better(&self.best_eval, &self.context_eval) {
                 self.context.clone_from(&self.best);
                 self.context_eval = self.best_eval;
                 self.round_start = self.best_eval;
@@ -423,7 +449,11 @@ impl Optimizer for Cooperative {
 
     fn init(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng) {
         self.dim = ev.dimension();
-        self.block = ev.block_size();
+        self.block = if self.params.decompose {
+            ev.block_size()
+        } else {
+            self.dim
+        };
         self.context = vec![0.0; self.dim];
         self.context_eval = Evaluation::worst();
         self.full = vec![0.0; self.dim];
@@ -444,11 +474,11 @@ impl Optimizer for Cooperative {
         }
         self.spent += 1;
         if self.spent > self.params.block_iterations {
+            let improved = better(self.params, &self.context_eval, &self.visit_start);
             let s = &mut self.spread[self.current];
-            *s = if self
-                .context_eval
-                .better_feasibility_first(&self.visit_start)
-            {
+            *s = if !self.params.adaptive_spread {
+                *s
+            } else if improved {
                 (*s * 2.0).min(0.5)
             } else {
                 (*s * 0.5).max(1e-9)
@@ -464,7 +494,7 @@ impl Optimizer for Cooperative {
 
     fn best(&self) -> (&[f64], Evaluation) {
         // The context may have improved since the last record (a visit cut by the budget).
-        if self.best.is_empty() || self.context_eval.better_feasibility_first(&self.best_eval) {
+        if self.best.is_empty() || self.better(&self.context_eval, &self.best_eval) {
             (&self.context, self.context_eval)
         } else {
             (&self.best, self.best_eval)
@@ -574,5 +604,74 @@ mod tests {
         // Optimum: x_0 = 1, the rest 0, cost 1.
         assert!((out.best.cost - 1.0).abs() < 1e-2, "{}", out.best.cost);
         assert_eq!(out.evaluations, 6000);
+    }
+
+    /// The constraint of [`Constrained`] left out of the cost, so only the comparison can
+    /// see it.
+    struct Unpenalised(Vec<Bound>);
+
+    impl Problem for Unpenalised {
+        fn bounds(&self) -> &[Bound] {
+            &self.0
+        }
+        fn evaluate(&self, x: &[f64]) -> Evaluation {
+            Evaluation::new(x.iter().map(|v| v * v).sum(), (1.0 - x[0]).max(0.0))
+        }
+        fn block_size(&self) -> usize {
+            3
+        }
+    }
+
+    #[test]
+    fn without_feasibility_first_the_search_follows_the_cost_alone() {
+        let p = Unpenalised(vec![Bound::new(-5.0, 5.0); 6]);
+        let run = |feasibility_first: bool| {
+            let mut opt = Cooperative::new(CoopParams {
+                feasibility_first,
+                ..CoopParams::DEFAULT
+            });
+            solve(
+                &p,
+                &mut opt,
+                Budget::evaluations(3000),
+                &mut rng_from_seed(5),
+                &mut |_| {},
+            )
+            .best
+        };
+        assert!(run(true).feasible());
+        let blind = run(false);
+        assert!(!blind.feasible() && blind.cost < 0.1, "{blind:?}");
+    }
+
+    #[test]
+    fn each_ablation_switch_changes_the_search_and_still_runs() {
+        let p = Constrained(vec![Bound::new(-5.0, 5.0); 9]);
+        let run = |params: CoopParams| {
+            let mut opt = Cooperative::new(params);
+            solve(
+                &p,
+                &mut opt,
+                Budget::evaluations(3000),
+                &mut rng_from_seed(5),
+                &mut |_| {},
+            )
+        };
+        let base = run(CoopParams::DEFAULT);
+        for off in [
+            CoopParams {
+                adaptive_spread: false,
+                ..CoopParams::DEFAULT
+            },
+            CoopParams {
+                decompose: false,
+                ..CoopParams::DEFAULT
+            },
+        ] {
+            let out = run(off);
+            assert_eq!(out.evaluations, 3000, "{off:?}");
+            assert!(out.best.cost.is_finite(), "{off:?}");
+            assert_ne!(out.best_x, base.best_x, "{off:?} searched the same way");
+        }
     }
 }
