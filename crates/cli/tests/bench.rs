@@ -315,3 +315,50 @@ fn a_different_experiment_cannot_resume_in_the_same_folder() {
             .and(predicate::str::contains("master seed")),
     );
 }
+
+#[test]
+fn budgets_are_equal_by_default_and_per_method_with_budget_paper() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |name: &str, extra: &[&str]| {
+        let out = dir.path().join(name);
+        let assert = Command::cargo_bin("swarmplan")
+            .unwrap()
+            .args(["bench", "--scenarios", "tiny", "--runs", "2", "--population", "10"])
+            .args(extra)
+            .arg("--out")
+            .arg(&out)
+            .assert()
+            .success();
+        let stderr = String::from_utf8_lossy(&assert.get_output().stderr).to_string();
+        (lines(&out.join("runs.jsonl")), stderr)
+    };
+    // Equal: every method spends exactly the budget, whatever its evaluations per
+    // iteration (ABC's bees, DLS's substitution probes, swarmplan's sub-swarms).
+    let (recs, stderr) = run(
+        "equal",
+        &["--methods", "pso,abc,dls-smpso,swarmplan", "--evaluations", "700"],
+    );
+    assert!(stderr.contains("equal budgets: 700 evaluations per run"), "{stderr}");
+    assert_eq!(recs.len(), 8);
+    for r in &recs {
+        assert_eq!(r["evaluations"], 700, "{}", r["method"]);
+    }
+    // Paper: each method its own setting; PSO does 200 iterations of 10 particles.
+    let (recs, stderr) = run("paper", &["--methods", "pso", "--budget", "paper"]);
+    assert!(stderr.contains("paper budgets"), "{stderr}");
+    assert!(recs.iter().all(|r| r["evaluations"] == 2010 && r["iterations"] == 200));
+    let spec: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.path().join("paper/experiment.json")).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(spec["budget_policy"], "paper");
+    // The two do not combine.
+    Command::cargo_bin("swarmplan")
+        .unwrap()
+        .args(["bench", "--scenarios", "tiny", "--budget", "paper", "--iterations", "5"])
+        .arg("--out")
+        .arg(dir.path().join("both"))
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("--budget paper"));
+}

@@ -10,7 +10,7 @@
 
 use serde::{Deserialize, Serialize};
 use swarmplan_core::method::Method;
-use swarmplan_core::optim::{Budget, OptimizerParams};
+use swarmplan_core::optim::{Budget, OptimizerParams, PAPER_EVALUATIONS};
 use swarmplan_core::rng::derive_seed;
 use thiserror::Error;
 
@@ -47,11 +47,46 @@ pub struct ExperimentSpec {
     pub methods: Vec<Method>,
     #[serde(default = "default_param_sets")]
     pub param_sets: Vec<ParamSet>,
-    #[serde(default)]
+    /// The budget of every run under [`BudgetPolicy::Equal`] (default: 38,700 evaluations,
+    /// DLS-SMPSO's paper mean).
+    #[serde(default = "equal_budget")]
     pub budget: Budget,
+    /// Equal budgets (the default) or each method's paper setting.
+    #[serde(default)]
+    pub budget_policy: BudgetPolicy,
     /// Terrain file replacing every scenario's terrain source.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub terrain: Option<String>,
+}
+
+/// How an experiment budgets its runs.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum BudgetPolicy {
+    /// Every method gets the experiment's `budget` (fair comparisons; the default).
+    #[default]
+    Equal,
+    /// Each method gets its own default: the paper's 200 iterations for the paper's
+    /// methods (so DLS-SMPSO spends about 38,700 evaluations and PSO 10,050), 38,700
+    /// evaluations for swarmplan's own (Tables 4-5 as the paper ran them).
+    Paper,
+}
+
+impl BudgetPolicy {
+    /// `equal` or `paper`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Equal => "equal",
+            Self::Paper => "paper",
+        }
+    }
+}
+
+/// The default equal budget: [`PAPER_EVALUATIONS`] evaluations.
+#[must_use]
+pub const fn equal_budget() -> Budget {
+    Budget::evaluations(PAPER_EVALUATIONS)
 }
 
 fn default_param_sets() -> Vec<ParamSet> {
@@ -60,7 +95,9 @@ fn default_param_sets() -> Vec<ParamSet> {
 
 impl ExperimentSpec {
     /// The paper's experiment: both cases, the six methods of the paper plus SPSO (the
-    /// ablation of DLS), 200 runs each, paper settings.
+    /// ablation of DLS), 200 runs each, paper parameters, at equal budgets of
+    /// [`PAPER_EVALUATIONS`] evaluations (set `budget_policy` to `paper` for the paper's
+    /// per-iteration budgets).
     #[must_use]
     pub fn paper(master_seed: u64) -> Self {
         Self {
@@ -69,7 +106,8 @@ impl ExperimentSpec {
             scenarios: vec!["paper-case1".into(), "paper-case2".into()],
             methods: Method::paper_methods(),
             param_sets: default_param_sets(),
-            budget: Budget::DEFAULT,
+            budget: equal_budget(),
+            budget_policy: BudgetPolicy::Equal,
             terrain: None,
         }
     }
@@ -106,6 +144,15 @@ impl ExperimentSpec {
                 .map_err(|e| MatrixError::Params(format!("param_sets `{}`: {e}", p.name)))?;
         }
         Ok(())
+    }
+
+    /// The budget of a run of `method`.
+    #[must_use]
+    pub fn budget_for(&self, method: Method) -> Budget {
+        match self.budget_policy {
+            BudgetPolicy::Equal => self.budget,
+            BudgetPolicy::Paper => method.optimizer.default_budget(),
+        }
     }
 
     /// Number of runs in the matrix.
@@ -215,6 +262,23 @@ pub enum MatrixError {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn budgets_default_to_equal_evaluations() {
+        let spec = ExperimentSpec::paper(1);
+        let pso = Method::preset("pso").unwrap();
+        let coop = Method::preset("swarmplan").unwrap();
+        assert_eq!(spec.budget_for(pso), Budget::evaluations(PAPER_EVALUATIONS));
+        assert_eq!(spec.budget_for(coop), Budget::evaluations(PAPER_EVALUATIONS));
+        // A file without a budget gets the same; `budget_policy = "paper"` each method its own.
+        let text = "master_seed = 1\nruns = 2\nscenarios = [\"tiny\"]\nmethods = [\"pso\"]\n";
+        let read: ExperimentSpec = toml::from_str(text).unwrap();
+        assert_eq!(read.budget_for(pso), Budget::evaluations(PAPER_EVALUATIONS));
+        let paper: ExperimentSpec =
+            toml::from_str(&format!("{text}budget_policy = \"paper\"\n")).unwrap();
+        assert_eq!(paper.budget_for(pso), Budget::DEFAULT);
+        assert_eq!(paper.budget_for(coop), Budget::evaluations(PAPER_EVALUATIONS));
+    }
 
     #[test]
     fn matrix_order_and_size() {

@@ -109,7 +109,7 @@ pub fn run_experiment(
                 let req = RunRequest {
                     method: key.method,
                     params: set.params,
-                    budget: spec.budget,
+                    budget: spec.budget_for(key.method),
                     seed: spec.seed(key),
                 };
                 let result = run(world, &req, &mut |_| {});

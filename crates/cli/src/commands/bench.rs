@@ -9,9 +9,8 @@ use anyhow::{Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use swarmplan_core::method::Method;
-use swarmplan_core::optim::Budget;
 use swarmplan_experiment::aggregate::aggregate;
-use swarmplan_experiment::matrix::{ExperimentSpec, ParamSet, Shard};
+use swarmplan_experiment::matrix::{equal_budget, BudgetPolicy, ExperimentSpec, ParamSet, Shard};
 use swarmplan_experiment::record::RunRecord;
 use swarmplan_experiment::runner::{run_experiment, RunnerOptions};
 use swarmplan_experiment::suite::{suite, suite_names};
@@ -49,6 +48,11 @@ pub struct BenchArgs {
     /// Output folder.
     #[arg(long, default_value = "out/bench")]
     pub out: PathBuf,
+    /// Budgets: `equal` (every method the same evaluations: 38,700, DLS-SMPSO's paper mean,
+    /// or --evaluations / --iterations) or `paper` (each method its paper setting: 200
+    /// iterations for the paper's methods). Default: equal.
+    #[arg(long, value_parser = ["equal", "paper"])]
+    pub budget: Option<String>,
     /// Budget and parameters (a --params file becomes the parameter set `custom`).
     #[command(flatten)]
     pub settings: SettingsArgs,
@@ -101,8 +105,18 @@ fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
         spec.master_seed = s;
     }
     let st = &args.settings;
-    if st.iterations.is_some() || st.evaluations.is_some() {
-        spec.budget = budget(st.iterations, st.evaluations, Budget::DEFAULT)?;
+    let fixed = st.iterations.is_some() || st.evaluations.is_some();
+    match args.budget.as_deref() {
+        Some("paper") if fixed => anyhow::bail!(
+            "--budget paper gives each method its paper setting; it cannot be combined with --iterations or --evaluations"
+        ),
+        Some("paper") => spec.budget_policy = BudgetPolicy::Paper,
+        Some(_) => spec.budget_policy = BudgetPolicy::Equal,
+        None => {}
+    }
+    if fixed {
+        spec.budget_policy = BudgetPolicy::Equal;
+        spec.budget = budget(st.iterations, st.evaluations, equal_budget())?;
     }
     if st.params.is_some() || st.population.is_some() {
         let params = load_params(st.params.as_ref(), st.population)?;
@@ -121,6 +135,26 @@ fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
     }
     spec.validate()?;
     Ok(spec)
+}
+
+/// The budget of an experiment in words, e.g. `equal budgets: 38700 evaluations per run`.
+fn describe_budget(spec: &ExperimentSpec) -> String {
+    match spec.budget_policy {
+        BudgetPolicy::Paper => {
+            "paper budgets: each method its paper setting (200 iterations; swarmplan 38700 evaluations)".into()
+        }
+        BudgetPolicy::Equal => {
+            let b = spec.budget;
+            let parts: Vec<String> = [
+                b.evaluations.map(|e| format!("{e} evaluations")),
+                b.max_iterations().map(|i| format!("{i} iterations")),
+            ]
+            .into_iter()
+            .flatten()
+            .collect();
+            format!("equal budgets: {} per run", parts.join(" or "))
+        }
+    }
 }
 
 /// Spacing of progress lines when stderr is not a terminal.
@@ -155,12 +189,13 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
         args.threads
     };
     eprintln!(
-        "bench: {} scenarios x {} methods x {} parameter sets x {} runs = {} runs, master seed {}, {} threads{}, into {}",
+        "bench: {} scenarios x {} methods x {} parameter sets x {} runs = {} runs, {}, master seed {}, {} threads{}, into {}",
         spec.scenarios.len(),
         spec.methods.len(),
         spec.param_sets.len(),
         spec.runs,
         spec.size(),
+        describe_budget(&spec),
         spec.master_seed,
         threads,
         shard.map_or(String::new(), |s| format!(", shard {}/{}", s.index, s.count)),

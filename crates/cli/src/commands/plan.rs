@@ -169,8 +169,9 @@ impl std::error::Error for Infeasible {}
 /// Budget and algorithm settings, shared by `plan` and `bench`.
 #[derive(Debug, Clone, Args)]
 pub struct SettingsArgs {
-    /// Iterations per run (default: 200, the paper's, for the paper's methods; 38,700
-    /// evaluations for swarmplan's own). With --evaluations, whichever ends first.
+    /// Iterations per run (plan's default: 200, the paper's, for the paper's methods, 38,700
+    /// evaluations for swarmplan's own; bench: see --budget). With --evaluations, whichever
+    /// ends first.
     #[arg(long)]
     pub iterations: Option<usize>,
     /// Population size (default 50, the paper's; 10 for swarmplan's sub-swarms).
