@@ -66,6 +66,17 @@ pub struct ScenarioArgs {
     /// GeoTIFF or ESRI ASCII grid replacing the scenario's terrain source.
     #[arg(long)]
     pub terrain: Option<PathBuf>,
+    /// Feasibility profile replacing the scenario's `planning.profile`: `strict` (every
+    /// constraint hard) or `paper` (threats, terrain, turns and energy hard; the rest cost
+    /// only, as the paper's FR counts).
+    #[arg(long, value_parser = parse_profile)]
+    pub profile: Option<swarmplan_core::feasibility::FeasibilityProfile>,
+}
+
+/// A feasibility profile by name.
+pub fn parse_profile(s: &str) -> Result<swarmplan_core::feasibility::FeasibilityProfile, String> {
+    swarmplan_core::feasibility::FeasibilityProfile::from_name(s)
+        .ok_or_else(|| format!("expected `strict` or `paper`, got `{s}`"))
 }
 
 fn main() -> ExitCode {

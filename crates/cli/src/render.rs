@@ -47,21 +47,29 @@ pub fn assessment(world: &World, a: &Assessment) -> String {
     let _ = writeln!(s, "  {:<14} {:>12.2}", "total", a.total);
     let _ = writeln!(s, "  {:<14} {:>12.2}", "per UAV", a.per_uav_cost());
     let v = a.violations.as_deref().unwrap_or_default();
-    if v.is_empty() {
-        let _ = writeln!(s, "\nfeasible: yes");
+    let hard = v.iter().filter(|x| x.hard).count();
+    let soft = v.len() - hard;
+    let soft_note = if soft > 0 {
+        format!("; {soft} soft, in the cost only (profile {})", a.profile)
     } else {
-        let _ = writeln!(s, "\nfeasible: no ({} violations)", v.len());
-        for x in v {
-            let when = x.time.map(|t| format!(" t={t:.1}s")).unwrap_or_default();
-            let _ = writeln!(
-                s,
-                "  {:<10} uav {}{}: {}",
-                x.kind.name(),
-                x.uav,
-                when,
-                x.detail
-            );
-        }
+        String::new()
+    };
+    if hard == 0 {
+        let _ = writeln!(s, "\nfeasible: yes{soft_note}");
+    } else {
+        let _ = writeln!(s, "\nfeasible: no ({hard} violations{soft_note})");
+    }
+    for x in v {
+        let when = x.time.map(|t| format!(" t={t:.1}s")).unwrap_or_default();
+        let _ = writeln!(
+            s,
+            "  {:<10} uav {}{}: {}{}",
+            x.kind.name(),
+            x.uav,
+            when,
+            x.detail,
+            if x.hard { "" } else { " (soft)" }
+        );
     }
     s
 }

@@ -323,7 +323,15 @@ fn budgets_are_equal_by_default_and_per_method_with_budget_paper() {
         let out = dir.path().join(name);
         let assert = Command::cargo_bin("swarmplan")
             .unwrap()
-            .args(["bench", "--scenarios", "tiny", "--runs", "2", "--population", "10"])
+            .args([
+                "bench",
+                "--scenarios",
+                "tiny",
+                "--runs",
+                "2",
+                "--population",
+                "10",
+            ])
             .args(extra)
             .arg("--out")
             .arg(&out)
@@ -336,9 +344,17 @@ fn budgets_are_equal_by_default_and_per_method_with_budget_paper() {
     // iteration (ABC's bees, DLS's substitution probes, swarmplan's sub-swarms).
     let (recs, stderr) = run(
         "equal",
-        &["--methods", "pso,abc,dls-smpso,swarmplan", "--evaluations", "700"],
+        &[
+            "--methods",
+            "pso,abc,dls-smpso,swarmplan",
+            "--evaluations",
+            "700",
+        ],
     );
-    assert!(stderr.contains("equal budgets: 700 evaluations per run"), "{stderr}");
+    assert!(
+        stderr.contains("equal budgets: 700 evaluations per run"),
+        "{stderr}"
+    );
     assert_eq!(recs.len(), 8);
     for r in &recs {
         assert_eq!(r["evaluations"], 700, "{}", r["method"]);
@@ -346,7 +362,9 @@ fn budgets_are_equal_by_default_and_per_method_with_budget_paper() {
     // Paper: each method its own setting; PSO does 200 iterations of 10 particles.
     let (recs, stderr) = run("paper", &["--methods", "pso", "--budget", "paper"]);
     assert!(stderr.contains("paper budgets"), "{stderr}");
-    assert!(recs.iter().all(|r| r["evaluations"] == 2010 && r["iterations"] == 200));
+    assert!(recs
+        .iter()
+        .all(|r| r["evaluations"] == 2010 && r["iterations"] == 200));
     let spec: serde_json::Value = serde_json::from_str(
         &std::fs::read_to_string(dir.path().join("paper/experiment.json")).unwrap(),
     )
@@ -355,10 +373,59 @@ fn budgets_are_equal_by_default_and_per_method_with_budget_paper() {
     // The two do not combine.
     Command::cargo_bin("swarmplan")
         .unwrap()
-        .args(["bench", "--scenarios", "tiny", "--budget", "paper", "--iterations", "5"])
+        .args([
+            "bench",
+            "--scenarios",
+            "tiny",
+            "--budget",
+            "paper",
+            "--iterations",
+            "5",
+        ])
         .arg("--out")
         .arg(dir.path().join("both"))
         .assert()
         .code(2)
         .stderr(predicate::str::contains("--budget paper"));
+}
+
+#[test]
+fn the_profile_is_named_in_records_and_the_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("paper");
+    Command::cargo_bin("swarmplan")
+        .unwrap()
+        .args([
+            "bench",
+            "--scenarios",
+            "tiny",
+            "--methods",
+            "spso",
+            "--runs",
+            "2",
+        ])
+        .args([
+            "--evaluations",
+            "200",
+            "--population",
+            "10",
+            "--profile",
+            "paper",
+        ])
+        .arg("--out")
+        .arg(&out)
+        .assert()
+        .success()
+        .stderr(predicate::str::contains("profile paper"));
+    assert!(lines(&out.join("runs.jsonl"))
+        .iter()
+        .all(|r| r["profile"] == "paper"));
+    let md = std::fs::read_to_string(out.join("summary.md")).unwrap();
+    assert!(md.contains("feasibility profile paper"), "{md}");
+    Command::cargo_bin("swarmplan")
+        .unwrap()
+        .args(["bench", "--scenarios", "tiny", "--profile", "lenient"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("expected `strict` or `paper`"));
 }

@@ -13,6 +13,62 @@ use crate::cost::assess;
 use crate::plan::Plan;
 use crate::world::World;
 
+/// Which violation kinds are hard (decide feasibility) and which only cost.
+///
+/// `strict` (the default) makes every kind hard: the plan must fly. `paper` follows the
+/// paper's FR definition (Section 4): obstacle avoidance (threats and terrain), the
+/// turning-angle limit and the energy limit are hard; every other kind (communication,
+/// UAV-UAV separation, climb, altitude band, map box, speed, payload) is *soft*: it still
+/// adds its penalty to the cost, as the paper's Eqs. 6 and 8 make communication and
+/// proximity cost terms, but it does not make the plan infeasible. Tables 4-5 in both
+/// profiles let a reader hold our FR against the paper's.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FeasibilityProfile {
+    #[default]
+    Strict,
+    Paper,
+}
+
+impl FeasibilityProfile {
+    pub const ALL: [Self; 2] = [Self::Strict, Self::Paper];
+
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Strict => "strict",
+            Self::Paper => "paper",
+        }
+    }
+
+    /// Whether a violation of `kind` makes a plan infeasible under this profile.
+    #[must_use]
+    pub const fn is_hard(self, kind: ViolationKind) -> bool {
+        match self {
+            Self::Strict => true,
+            Self::Paper => matches!(
+                kind,
+                ViolationKind::Threat
+                    | ViolationKind::Terrain
+                    | ViolationKind::Turn
+                    | ViolationKind::Energy
+            ),
+        }
+    }
+
+    /// The profile named `name`.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|p| p.name() == name)
+    }
+}
+
+impl std::fmt::Display for FeasibilityProfile {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// What was violated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -129,14 +185,29 @@ pub struct Violation {
     pub amount: f64,
     /// A sentence for humans.
     pub detail: String,
+    /// Whether it decides feasibility under the profile (false: it only costs).
+    #[serde(default = "hard_default", skip_serializing_if = "is_true")]
+    pub hard: bool,
+}
+
+const fn hard_default() -> bool {
+    true
+}
+
+#[allow(clippy::trivially_copy_pass_by_ref)] // serde's skip_serializing_if passes a reference
+const fn is_true(b: &bool) -> bool {
+    *b
 }
 
 /// Collects violations: always their scalar measure, the list only on request.
 #[derive(Debug, Default)]
 pub struct ViolationSink {
-    /// Sum over violations of (1 + amount / scale of its kind): any violation counts at
+    /// Sum over hard violations of (1 + amount / scale of its kind): any violation counts at
     /// least 1 ([`ViolationKind::scale`]).
     pub measure: f64,
+    /// The same sum over soft violations (those the profile counts in the cost only).
+    pub soft: f64,
+    pub profile: FeasibilityProfile,
     pub list: Option<Vec<Violation>>,
 }
 
@@ -150,11 +221,21 @@ pub struct At {
 }
 
 impl ViolationSink {
+    /// A sink that sums only, under `profile`.
     #[must_use]
-    pub fn collecting() -> Self {
+    pub fn new(profile: FeasibilityProfile) -> Self {
         Self {
-            measure: 0.0,
+            profile,
+            ..Self::default()
+        }
+    }
+
+    /// A sink that also keeps the list, under `profile`.
+    #[must_use]
+    pub fn collecting(profile: FeasibilityProfile) -> Self {
+        Self {
             list: Some(Vec::new()),
+            ..Self::new(profile)
         }
     }
 
@@ -177,7 +258,12 @@ impl ViolationSink {
         } else {
             1e9
         };
-        self.measure += 1.0 + amount / kind.scale();
+        let hard = self.profile.is_hard(kind);
+        if hard {
+            self.measure += 1.0 + amount / kind.scale();
+        } else {
+            self.soft += 1.0 + amount / kind.scale();
+        }
         if let Some(list) = &mut self.list {
             list.push(Violation {
                 kind,
@@ -188,6 +274,7 @@ impl ViolationSink {
                 time: at.time,
                 amount,
                 detail: detail(),
+                hard,
             });
         }
     }

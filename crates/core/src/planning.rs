@@ -86,7 +86,7 @@ impl Problem for PlanningProblem<'_> {
             let mut b = b.borrow_mut();
             let (plan, scratch) = &mut *b;
             self.encoding.decode_into(x, plan);
-            let mut sink = ViolationSink::default();
+            let mut sink = ViolationSink::new(self.world.spec.planning.profile);
             let (cost, violation) = assess_into(self.world, plan, scratch, &mut sink, false);
             Evaluation::new(cost, violation)
         })

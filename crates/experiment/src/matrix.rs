@@ -9,6 +9,7 @@
 //! is a real block for paired statistics (the summary's Friedman test).
 
 use serde::{Deserialize, Serialize};
+use swarmplan_core::feasibility::FeasibilityProfile;
 use swarmplan_core::method::Method;
 use swarmplan_core::optim::{Budget, OptimizerParams, PAPER_EVALUATIONS};
 use swarmplan_core::rng::derive_seed;
@@ -54,6 +55,9 @@ pub struct ExperimentSpec {
     /// Equal budgets (the default) or each method's paper setting.
     #[serde(default)]
     pub budget_policy: BudgetPolicy,
+    /// Feasibility profile of every run (`strict` unless set; docs/model.md).
+    #[serde(default)]
+    pub profile: FeasibilityProfile,
     /// Terrain file replacing every scenario's terrain source.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub terrain: Option<String>,
@@ -108,6 +112,7 @@ impl ExperimentSpec {
             param_sets: default_param_sets(),
             budget: equal_budget(),
             budget_policy: BudgetPolicy::Equal,
+            profile: FeasibilityProfile::Strict,
             terrain: None,
         }
     }
@@ -269,7 +274,10 @@ mod tests {
         let pso = Method::preset("pso").unwrap();
         let coop = Method::preset("swarmplan").unwrap();
         assert_eq!(spec.budget_for(pso), Budget::evaluations(PAPER_EVALUATIONS));
-        assert_eq!(spec.budget_for(coop), Budget::evaluations(PAPER_EVALUATIONS));
+        assert_eq!(
+            spec.budget_for(coop),
+            Budget::evaluations(PAPER_EVALUATIONS)
+        );
         // A file without a budget gets the same; `budget_policy = "paper"` each method its own.
         let text = "master_seed = 1\nruns = 2\nscenarios = [\"tiny\"]\nmethods = [\"pso\"]\n";
         let read: ExperimentSpec = toml::from_str(text).unwrap();
@@ -277,7 +285,10 @@ mod tests {
         let paper: ExperimentSpec =
             toml::from_str(&format!("{text}budget_policy = \"paper\"\n")).unwrap();
         assert_eq!(paper.budget_for(pso), Budget::DEFAULT);
-        assert_eq!(paper.budget_for(coop), Budget::evaluations(PAPER_EVALUATIONS));
+        assert_eq!(
+            paper.budget_for(coop),
+            Budget::evaluations(PAPER_EVALUATIONS)
+        );
     }
 
     #[test]

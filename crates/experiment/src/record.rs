@@ -4,6 +4,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 use swarmplan_core::encoding::{EncodingKind, InitKind};
+use swarmplan_core::feasibility::FeasibilityProfile;
 use swarmplan_core::method::Method;
 use swarmplan_core::optim::{OptimizerKind, OptimizerParams};
 use swarmplan_core::run::RunResult;
@@ -36,9 +37,16 @@ pub struct RunRecord {
     pub uav_costs: Vec<f64>,
     /// Weighted terms summed over UAVs, plus `penalty`.
     pub terms: BTreeMap<String, f64>,
+    /// The feasibility profile the run was assessed under (`strict` in records written
+    /// before profiles existed).
+    #[serde(default)]
+    pub profile: FeasibilityProfile,
     pub feasible: bool,
-    /// Number of violations of each kind in the best plan.
+    /// Number of hard violations of each kind in the best plan.
     pub violations: BTreeMap<String, usize>,
+    /// Number of soft violations (cost only, under the `paper` profile) of each kind.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub soft_violations: BTreeMap<String, usize>,
     pub evaluations: u64,
     pub iterations: usize,
     pub seconds: f64,
@@ -73,9 +81,14 @@ impl RunRecord {
             .map(|(k, v)| (k.name().to_string(), finite(v)))
             .collect();
         terms.insert("penalty".into(), finite(a.penalty));
-        let mut violations = BTreeMap::new();
+        let (mut violations, mut soft_violations) = (BTreeMap::new(), BTreeMap::new());
         for v in a.violations.iter().flatten() {
-            *violations.entry(v.kind.name().to_string()).or_insert(0) += 1;
+            let map = if v.hard {
+                &mut violations
+            } else {
+                &mut soft_violations
+            };
+            *map.entry(v.kind.name().to_string()).or_insert(0) += 1;
         }
         Self {
             scenario: key.scenario.clone(),
@@ -92,8 +105,10 @@ impl RunRecord {
             cost_per_uav: a.total / n,
             uav_costs: a.per_uav.iter().map(|u| finite(u.cost)).collect(),
             terms,
+            profile: a.profile,
             feasible: a.feasible(),
             violations,
+            soft_violations,
             evaluations: result.outcome.evaluations,
             iterations: result.outcome.iterations,
             seconds: result.seconds,

@@ -65,7 +65,8 @@ pub fn run_experiment(
         .scenarios
         .iter()
         .map(|name| {
-            let loaded = load_spec(name)?;
+            let mut loaded = load_spec(name)?;
+            loaded.spec.planning.profile = spec.profile;
             let terrain = spec.terrain.as_ref().map(PathBuf::from);
             Ok((name.clone(), build_world(&loaded, terrain.as_deref())?))
         })

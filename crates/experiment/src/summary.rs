@@ -18,6 +18,7 @@ use std::fmt::Write as _;
 
 use serde::{Deserialize, Serialize};
 use swarmplan_core::encoding::{EncodingKind, InitKind};
+use swarmplan_core::feasibility::FeasibilityProfile;
 use swarmplan_core::method::Method;
 use swarmplan_core::optim::OptimizerKind;
 
@@ -83,6 +84,9 @@ pub struct ScenarioSummary {
 pub struct ExperimentSummary {
     pub master_seed: u64,
     pub records: usize,
+    /// The feasibility profiles of the records (one, unless folders were mixed).
+    #[serde(default)]
+    pub profiles: Vec<FeasibilityProfile>,
     pub scenarios: Vec<ScenarioSummary>,
 }
 
@@ -97,6 +101,9 @@ pub fn reference_method() -> Method {
 pub fn summarize_records(master_seed: u64, records: &[RunRecord]) -> ExperimentSummary {
     let mut sorted: Vec<&RunRecord> = records.iter().collect();
     sorted.sort_by_key(|r| r.key());
+    let mut profiles: Vec<FeasibilityProfile> = records.iter().map(|r| r.profile).collect();
+    profiles.sort_by_key(|p| p.name());
+    profiles.dedup();
     let mut cells: Vec<(String, String)> = sorted
         .iter()
         .map(|r| (r.scenario.clone(), r.param_set.clone()))
@@ -195,6 +202,7 @@ pub fn summarize_records(master_seed: u64, records: &[RunRecord]) -> ExperimentS
     ExperimentSummary {
         master_seed,
         records: records.len(),
+        profiles,
         scenarios,
     }
 }
@@ -262,7 +270,8 @@ fn p(v: f64) -> String {
 #[must_use]
 pub fn markdown(s: &ExperimentSummary) -> String {
     let mut out = String::new();
-    let _ = writeln!(out, "# Experiment summary\n\nMaster seed {}, {} runs recorded. Costs are per UAV (total / n), as in the paper.\n", s.master_seed, s.records);
+    let profiles: Vec<&str> = s.profiles.iter().map(|p| p.name()).collect();
+    let _ = writeln!(out, "# Experiment summary\n\nMaster seed {}, {} runs recorded, feasibility profile {} (FR counts {}). Costs are per UAV (total / n), as in the paper.\n", s.master_seed, s.records, profiles.join(" + "), if s.profiles == [FeasibilityProfile::Paper] { "threat, terrain, turn and energy violations only; the others are in the cost" } else { "every hard constraint" });
     for sc in &s.scenarios {
         let _ = writeln!(
             out,

@@ -72,6 +72,9 @@ pub struct CostSummary {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct AssessmentReport {
     pub feasible: bool,
+    /// The feasibility profile: which violations decide `feasible`.
+    #[serde(default)]
+    pub profile: swarmplan_core::feasibility::FeasibilityProfile,
     #[serde(with = "json_f64")]
     pub violation: f64,
     pub cost: CostSummary,
@@ -91,6 +94,7 @@ impl AssessmentReport {
         terms.insert("penalty".into(), finite(a.penalty));
         Self {
             feasible: a.feasible(),
+            profile: a.profile,
             violation: a.violation,
             cost: CostSummary {
                 total: a.total,

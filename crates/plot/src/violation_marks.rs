@@ -7,7 +7,8 @@
 //! Why here and not in the model: the model reports each violation with its UAV, index and
 //! position ([`swarmplan_core::feasibility::Violation`]); a figure needs them grouped into
 //! what to draw, and violations without a place (speed, payload, energy) counted for the
-//! legend so that an infeasible picture never looks clean.
+//! legend so that an infeasible picture never looks clean. Soft violations (the `paper`
+//! profile's cost-only kinds) are not marked.
 
 use glam::DVec3;
 use swarmplan_core::feasibility::{check, Violation, ViolationKind};
@@ -67,7 +68,7 @@ impl ViolationMarks {
         segment: impl Fn(usize, usize) -> Option<[DVec3; 2]>,
     ) -> Self {
         let mut marks = Self::default();
-        for v in violations {
+        for v in violations.iter().filter(|v| v.hard) {
             if v.kind == ViolationKind::Comm {
                 continue;
             }
@@ -139,6 +140,7 @@ mod tests {
             time: None,
             amount: 1.0,
             detail: String::new(),
+            hard: true,
         }
     }
 

@@ -53,6 +53,10 @@ pub struct BenchArgs {
     /// iterations for the paper's methods). Default: equal.
     #[arg(long, value_parser = ["equal", "paper"])]
     pub budget: Option<String>,
+    /// Feasibility profile of every run: `strict` (default; every constraint hard) or
+    /// `paper` (threats, terrain, turns and energy hard; the rest cost only).
+    #[arg(long, value_parser = crate::parse_profile)]
+    pub profile: Option<swarmplan_core::feasibility::FeasibilityProfile>,
     /// Budget and parameters (a --params file becomes the parameter set `custom`).
     #[command(flatten)]
     pub settings: SettingsArgs,
@@ -133,6 +137,9 @@ fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
     if let Some(t) = &args.terrain {
         spec.terrain = Some(t.display().to_string());
     }
+    if let Some(p) = args.profile {
+        spec.profile = p;
+    }
     spec.validate()?;
     Ok(spec)
 }
@@ -189,13 +196,14 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
         args.threads
     };
     eprintln!(
-        "bench: {} scenarios x {} methods x {} parameter sets x {} runs = {} runs, {}, master seed {}, {} threads{}, into {}",
+        "bench: {} scenarios x {} methods x {} parameter sets x {} runs = {} runs, {}, profile {}, master seed {}, {} threads{}, into {}",
         spec.scenarios.len(),
         spec.methods.len(),
         spec.param_sets.len(),
         spec.runs,
         spec.size(),
         describe_budget(&spec),
+        spec.profile,
         spec.master_seed,
         threads,
         shard.map_or(String::new(), |s| format!(", shard {}/{}", s.index, s.count)),

@@ -17,6 +17,9 @@ use crate::ScenarioArgs;
 
 /// Loads the scenario and builds its world (terrain included).
 pub fn load_world(args: &ScenarioArgs) -> Result<World> {
-    let loaded = load_spec(&args.scenario)?;
+    let mut loaded = load_spec(&args.scenario)?;
+    if let Some(p) = args.profile {
+        loaded.spec.planning.profile = p;
+    }
     Ok(build_world(&loaded, args.terrain.as_deref())?)
 }

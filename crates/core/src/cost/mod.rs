@@ -23,7 +23,7 @@ pub use term::{TermId, Terms, TERM_COUNT};
 
 use serde::{Deserialize, Serialize};
 
-use crate::feasibility::{Violation, ViolationSink};
+use crate::feasibility::{FeasibilityProfile, Violation, ViolationSink};
 use crate::plan::Plan;
 use crate::timing::TimedPlan;
 use crate::world::spec::ObjectivePreset;
@@ -57,8 +57,14 @@ pub struct Assessment {
     pub penalty: f64,
     /// terms_cost + penalty, +inf if not finite.
     pub total: f64,
-    /// Measure of violation: 0 iff feasible.
+    /// Measure of hard violation: 0 iff feasible.
     pub violation: f64,
+    /// Measure of soft violation (kinds the profile counts in the cost only).
+    #[serde(default)]
+    pub soft_violation: f64,
+    /// The feasibility profile it was assessed under.
+    #[serde(default)]
+    pub profile: FeasibilityProfile,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub violations: Option<Vec<Violation>>,
 }
@@ -73,23 +79,33 @@ impl Assessment {
     /// (the counts need the violation list, i.e. an assessment made with `report`).
     #[must_use]
     pub fn verdict(&self) -> String {
-        if self.feasible() {
-            return "FEASIBLE: no hard constraint violated".into();
-        }
         let list = self.violations.as_deref().unwrap_or_default();
-        let mut counts = std::collections::BTreeMap::new();
-        for v in list {
-            *counts.entry(v.kind).or_insert(0_usize) += 1;
+        let count = |hard: bool| {
+            let mut counts = std::collections::BTreeMap::new();
+            for v in list.iter().filter(|v| v.hard == hard) {
+                *counts.entry(v.kind).or_insert(0_usize) += 1;
+            }
+            let n: usize = counts.values().sum();
+            let by_kind: Vec<String> = counts
+                .iter()
+                .map(|(k, n)| format!("{} {n}", k.name()))
+                .collect();
+            (n, by_kind.join(", "))
+        };
+        let (soft_n, soft) = count(false);
+        let soft_note = if soft_n > 0 {
+            format!(
+                "; {soft_n} soft violations in the cost only ({soft}; profile {})",
+                self.profile
+            )
+        } else {
+            String::new()
+        };
+        if self.feasible() {
+            return format!("FEASIBLE: no hard constraint violated{soft_note}");
         }
-        let by_kind: Vec<String> = counts
-            .iter()
-            .map(|(k, n)| format!("{} {n}", k.name()))
-            .collect();
-        format!(
-            "INFEASIBLE: {} violations ({})",
-            list.len(),
-            by_kind.join(", ")
-        )
+        let (n, hard) = count(true);
+        format!("INFEASIBLE: {n} violations ({hard}){soft_note}")
     }
 
     /// Cost per UAV, as the paper's tables report it.
@@ -124,19 +140,22 @@ pub struct Scratch {
 #[must_use]
 pub fn assess(world: &World, plan: &Plan, report: bool) -> Assessment {
     let mut scratch = Scratch::default();
+    let profile = world.spec.planning.profile;
     let mut sink = if report {
-        ViolationSink::collecting()
+        ViolationSink::collecting(profile)
     } else {
-        ViolationSink::default()
+        ViolationSink::new(profile)
     };
     let (total, violation) = assess_into(world, plan, &mut scratch, &mut sink, report);
     let terms_cost = scratch.reports.iter().map(|r| r.cost).sum::<f64>();
     Assessment {
         per_uav: std::mem::take(&mut scratch.reports),
         terms_cost,
-        penalty: penalty(world, violation),
+        penalty: penalty(world, violation + sink.soft),
         total,
         violation,
+        soft_violation: sink.soft,
+        profile,
         violations: sink.list,
     }
 }
@@ -218,7 +237,9 @@ pub fn assess_into(
         };
     }
     let violation = sink.measure;
-    let total = terms_cost + penalty(world, violation);
+    // Soft violations (under the `paper` profile) cost as much as hard ones; only the
+    // feasibility verdict ignores them.
+    let total = terms_cost + penalty(world, violation + sink.soft);
     let total = if total.is_nan() { f64::INFINITY } else { total };
     (total, violation)
 }

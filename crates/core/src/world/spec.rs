@@ -383,6 +383,9 @@ pub struct PlanningSpec {
     pub spso_angles: bool,
     /// Default seed of `plan` when none is given.
     pub seed: u64,
+    /// Which violations decide feasibility: `strict` (all) or `paper` (threats, terrain,
+    /// turns, energy; the rest only cost) ([`crate::feasibility::FeasibilityProfile`]).
+    pub profile: crate::feasibility::FeasibilityProfile,
 }
 
 impl Default for PlanningSpec {
@@ -391,6 +394,7 @@ impl Default for PlanningSpec {
             waypoints: 10,
             spso_angles: false,
             seed: 1,
+            profile: crate::feasibility::FeasibilityProfile::Strict,
         }
     }
 }

@@ -1,0 +1,80 @@
+//! Feasibility profiles: `paper` moves the cost-only kinds out of the feasibility verdict
+//! and changes nothing else.
+
+#![allow(clippy::unwrap_used)] // tests fail loudly by design
+
+use swarmplan_core::cost::assess;
+use swarmplan_core::feasibility::{FeasibilityProfile, ViolationKind};
+use swarmplan_core::plan::Plan;
+use swarmplan_io::scenario::{build_world, load_spec};
+
+#[test]
+fn the_paper_profile_counts_only_its_hard_kinds_and_costs_the_same() {
+    for case in ["paper-case1", "paper-case2"] {
+        let mut loaded = load_spec(case).unwrap();
+        let strict_world = build_world(&loaded, None).unwrap();
+        loaded.spec.planning.profile = FeasibilityProfile::Paper;
+        let paper_world = build_world(&loaded, None).unwrap();
+        // Straight lines from the shared start: separation at take-off, threat crossings.
+        let starts: Vec<_> = (0..strict_world.uav_count())
+            .map(|i| strict_world.start(i))
+            .collect();
+        let plan = Plan::straight(&starts, strict_world.goal, 10);
+        let strict = assess(&strict_world, &plan, true);
+        let paper = assess(&paper_world, &plan, true);
+        let sv = strict.violations.clone().unwrap();
+        let pv = paper.violations.clone().unwrap();
+        assert_eq!(sv.len(), pv.len(), "{case}: the same violations are found");
+        assert!(
+            sv.iter().all(|v| v.hard),
+            "{case}: strict makes every kind hard"
+        );
+        assert!(
+            sv.iter().any(|v| v.kind == ViolationKind::Separation),
+            "{case}: the straight plan should break separation"
+        );
+        for v in &pv {
+            assert_eq!(
+                v.hard,
+                FeasibilityProfile::Paper.is_hard(v.kind),
+                "{case}: {v:?}"
+            );
+        }
+        assert!(pv.iter().any(|v| !v.hard));
+        // The cost is the same: soft violations keep their penalty.
+        // (Summed in another order, so equal to rounding.)
+        assert!(
+            (strict.total - paper.total).abs() <= 1e-12 * strict.total.abs(),
+            "{case}: {} vs {}",
+            strict.total,
+            paper.total
+        );
+        assert!((strict.violation - paper.violation - paper.soft_violation).abs() < 1e-9);
+        assert_eq!(paper.feasible(), pv.iter().all(|v| !v.hard), "{case}");
+        assert!(
+            paper.verdict().contains("soft violations in the cost only"),
+            "{}",
+            paper.verdict()
+        );
+        assert_eq!(strict.profile, FeasibilityProfile::Strict);
+        assert_eq!(paper.profile, FeasibilityProfile::Paper);
+    }
+}
+
+#[test]
+fn the_profile_is_a_scenario_field() {
+    let mut loaded = load_spec("tiny").unwrap();
+    assert_eq!(loaded.spec.planning.profile, FeasibilityProfile::Strict);
+    loaded.spec.planning.profile = FeasibilityProfile::Paper;
+    let text = swarmplan_io::scenario::to_toml(&loaded.spec);
+    assert!(text.contains("profile = \"paper\""), "{text}");
+    let again = swarmplan_io::scenario::parse_spec(&text, "t").unwrap();
+    assert_eq!(again.planning.profile, FeasibilityProfile::Paper);
+    let e = swarmplan_io::scenario::parse_spec(
+        &text.replace("profile = \"paper\"", "profile = \"lenient\""),
+        "t.toml",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("t.toml") && e.contains("profile"), "{e}");
+}
