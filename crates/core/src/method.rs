@@ -19,6 +19,7 @@
 //! | `abc` | abc | spherical | uniform | Karaboga 2005 |
 //! | `pso-uniform`, `apso-uniform` | pso | cartesian / angle | uniform | ablations: the first build's PSO and APSO |
 //! | `swarmplan` | coop | spherical | uniform | swarmplan's own: cooperative coevolution, feasibility first |
+//! | `lshade` | lshade | spherical | uniform | Tanabe & Fukunaga 2014 (a modern baseline, on the encoding the paper's methods use) |
 //!
 //! The paper does not say what QPSO, GWO and ABC search over; its Tables 4-5 put them within
 //! 30 % of DLS-SMPSO, which on this problem only the motion encoding comes near (on
@@ -69,7 +70,7 @@ const fn preset(
 }
 
 /// Every named method, the paper's first, in table order.
-pub const PRESETS: [Preset; 11] = [
+pub const PRESETS: [Preset; 12] = [
     preset(
         "pso",
         OptimizerKind::Pso,
@@ -147,6 +148,13 @@ pub const PRESETS: [Preset; 11] = [
         InitKind::Uniform,
         false,
     ),
+    preset(
+        "lshade",
+        OptimizerKind::Lshade,
+        EncodingKind::Spherical,
+        InitKind::Uniform,
+        false,
+    ),
 ];
 
 impl Method {
@@ -203,7 +211,7 @@ impl fmt::Display for Method {
 
 /// A method name that is neither a preset nor `optimizer/encoding/init`.
 #[derive(Debug, Error, Clone, PartialEq, Eq)]
-#[error("unknown method {0:?}; expected a preset (pso, apso, qpso, gwo, abc, spso, dls-smpso, dls-smpso-exemplar, pso-uniform, apso-uniform, swarmplan) or optimizer/encoding/init such as pso/spherical/line")]
+#[error("unknown method {0:?}; expected a preset (pso, apso, qpso, gwo, abc, spso, dls-smpso, dls-smpso-exemplar, pso-uniform, apso-uniform, swarmplan, lshade) or optimizer/encoding/init such as pso/spherical/line")]
 pub struct UnknownMethod(pub String);
 
 impl FromStr for Method {

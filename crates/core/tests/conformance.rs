@@ -134,7 +134,7 @@ fn cases() -> Vec<(&'static str, OptimizerKind, OptimizerParams)> {
 
 /// Convergence thresholds: (optimizer, [sphere, rastrigin, rosenbrock, ackley, and the
 /// same four shifted]). Keep in step with the table in `crates/core/src/optim/mod.rs`.
-const THRESHOLDS: [(&str, [f64; 8]); 7] = [
+const THRESHOLDS: [(&str, [f64; 8]); 8] = [
     ("pso", [1.0, 200.0, 500.0, 10.0, 0.1, 250.0, 500.0, 8.0]),
     (
         "dls-paper",
@@ -148,6 +148,7 @@ const THRESHOLDS: [(&str, [f64; 8]); 7] = [
         [1e-5, 3.0, 500.0, 0.01, 1e-5, 3.0, 500.0, 0.01],
     ),
     ("coop", [1e-3, 300.0, 1100.0, 5.0, 1e-3, 400.0, 400.0, 4.0]),
+    ("lshade", [1e-8, 2.0, 200.0, 1e-4, 1e-6, 5.0, 60.0, 1e-3]),
 ];
 
 fn run(
@@ -303,7 +304,11 @@ fn a_nan_is_never_kept_as_best() {
 #[test]
 #[ignore = "prints the measurements behind the thresholds"]
 fn measure() {
+    let only = std::env::var("MEASURE_ONLY").ok();
     for (label, alg, params) in cases() {
+        if only.as_deref().is_some_and(|o| o != label) {
+            continue;
+        }
         for p in &functions() {
             let mut costs: Vec<f64> = (1..=10)
                 .map(|s| {

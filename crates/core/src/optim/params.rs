@@ -17,6 +17,7 @@ use super::cooperative::{CoopParams, Cooperative};
 use super::dls_exemplar::{DlsExemplar, DlsExemplarParams};
 use super::dls_paper::{DlsPaper, DlsPaperParams};
 use super::gwo::{Gwo, GwoParams};
+use super::lshade::{Lshade, LshadeParams};
 use super::pso::{Pso, PsoParams};
 use super::qpso::{Qpso, QpsoParams};
 use super::Optimizer;
@@ -73,10 +74,12 @@ pub enum OptimizerKind {
     Abc,
     /// Cooperative coevolution, feasibility first ([`super::cooperative`]): swarmplan's own.
     Coop,
+    /// L-SHADE ([`super::lshade`]): a modern baseline, CEC 2014's winner.
+    Lshade,
 }
 
 impl OptimizerKind {
-    pub const ALL: [Self; 7] = [
+    pub const ALL: [Self; 8] = [
         Self::Pso,
         Self::DlsPaper,
         Self::DlsExemplar,
@@ -84,6 +87,7 @@ impl OptimizerKind {
         Self::Gwo,
         Self::Abc,
         Self::Coop,
+        Self::Lshade,
     ];
 
     #[must_use]
@@ -96,6 +100,7 @@ impl OptimizerKind {
             Self::Gwo => "gwo",
             Self::Abc => "abc",
             Self::Coop => "coop",
+            Self::Lshade => "lshade",
         }
     }
 }
@@ -157,6 +162,7 @@ pub struct OptimizerParams {
     pub abc: AbcParams,
     /// swarmplan's cooperative optimizer.
     pub coop: CoopParams,
+    pub lshade: LshadeParams,
 }
 
 impl OptimizerParams {
@@ -168,6 +174,7 @@ impl OptimizerParams {
         gwo: GwoParams::DEFAULT,
         abc: AbcParams::DEFAULT,
         coop: CoopParams::DEFAULT,
+        lshade: LshadeParams::DEFAULT,
     };
 
     /// Checks every section; the error names the first bad field with its section.
@@ -182,7 +189,8 @@ impl OptimizerParams {
         self.qpso.validate().map_err(|e| e.within("qpso"))?;
         self.gwo.validate().map_err(|e| e.within("gwo"))?;
         self.abc.validate().map_err(|e| e.within("abc"))?;
-        self.coop.validate().map_err(|e| e.within("coop"))
+        self.coop.validate().map_err(|e| e.within("coop"))?;
+        self.lshade.validate().map_err(|e| e.within("lshade"))
     }
 
     /// The population size `kind` will use (for ABC: bees, twice the food sources).
@@ -196,6 +204,7 @@ impl OptimizerParams {
             OptimizerKind::Gwo => self.gwo.population,
             OptimizerKind::Abc => self.abc.population,
             OptimizerKind::Coop => self.coop.population,
+            OptimizerKind::Lshade => self.lshade.max_population,
         }
     }
 
@@ -208,6 +217,7 @@ impl OptimizerParams {
         self.gwo.population = n;
         self.abc.population = n;
         self.coop.population = n;
+        self.lshade.max_population = n.max(self.lshade.min_population);
     }
 }
 
@@ -230,6 +240,7 @@ pub fn build(kind: OptimizerKind, params: &OptimizerParams) -> Box<dyn Optimizer
         OptimizerKind::Gwo => Box::new(Gwo::new(params.gwo)),
         OptimizerKind::Abc => Box::new(Abc::new(params.abc)),
         OptimizerKind::Coop => Box::new(Cooperative::new(params.coop)),
+        OptimizerKind::Lshade => Box::new(Lshade::new(params.lshade)),
     }
 }
 
@@ -265,7 +276,12 @@ mod tests {
         let p = OptimizerParams::default();
         p.validate().expect("defaults are valid");
         for a in OptimizerKind::ALL {
-            let want = if a == OptimizerKind::Coop { 10 } else { 50 };
+            let want = match a {
+                OptimizerKind::Coop => 10,
+                // L-SHADE's initial population cap; it shrinks to 4 over the run.
+                OptimizerKind::Lshade => 100,
+                _ => 50,
+            };
             assert_eq!(p.population(a), want, "{a}");
         }
         assert_eq!(p.pso.inertia, 1.0);
