@@ -20,6 +20,7 @@
 //! | `pso-uniform`, `apso-uniform` | pso | cartesian / angle | uniform | ablations: the first build's PSO and APSO |
 //! | `swarmplan` | coop | spherical | uniform | swarmplan's own: cooperative coevolution, feasibility first |
 //! | `lshade` | lshade | spherical | uniform | Tanabe & Fukunaga 2014 (a modern baseline, on the encoding the paper's methods use) |
+//! | `cmaes` | cmaes | spherical | uniform | Hansen & Ostermeier 2001 with IPOP restarts (Auger & Hansen 2005) |
 //!
 //! The paper does not say what QPSO, GWO and ABC search over; its Tables 4-5 put them within
 //! 30 % of DLS-SMPSO, which on this problem only the motion encoding comes near (on
@@ -70,7 +71,7 @@ const fn preset(
 }
 
 /// Every named method, the paper's first, in table order.
-pub const PRESETS: [Preset; 12] = [
+pub const PRESETS: [Preset; 13] = [
     preset(
         "pso",
         OptimizerKind::Pso,
@@ -155,6 +156,13 @@ pub const PRESETS: [Preset; 12] = [
         InitKind::Uniform,
         false,
     ),
+    preset(
+        "cmaes",
+        OptimizerKind::Cmaes,
+        EncodingKind::Spherical,
+        InitKind::Uniform,
+        false,
+    ),
 ];
 
 impl Method {
@@ -211,7 +219,7 @@ impl fmt::Display for Method {
 
 /// A method name that is neither a preset nor `optimizer/encoding/init`.
 #[derive(Debug, Error, Clone, PartialEq, Eq)]
-#[error("unknown method {0:?}; expected a preset (pso, apso, qpso, gwo, abc, spso, dls-smpso, dls-smpso-exemplar, pso-uniform, apso-uniform, swarmplan, lshade) or optimizer/encoding/init such as pso/spherical/line")]
+#[error("unknown method {0:?}; expected a preset (pso, apso, qpso, gwo, abc, spso, dls-smpso, dls-smpso-exemplar, pso-uniform, apso-uniform, swarmplan, lshade, cmaes) or optimizer/encoding/init such as pso/spherical/line")]
 pub struct UnknownMethod(pub String);
 
 impl FromStr for Method {

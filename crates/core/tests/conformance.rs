@@ -134,7 +134,7 @@ fn cases() -> Vec<(&'static str, OptimizerKind, OptimizerParams)> {
 
 /// Convergence thresholds: (optimizer, [sphere, rastrigin, rosenbrock, ackley, and the
 /// same four shifted]). Keep in step with the table in `crates/core/src/optim/mod.rs`.
-const THRESHOLDS: [(&str, [f64; 8]); 8] = [
+const THRESHOLDS: [(&str, [f64; 8]); 9] = [
     ("pso", [1.0, 200.0, 500.0, 10.0, 0.1, 250.0, 500.0, 8.0]),
     (
         "dls-paper",
@@ -149,6 +149,10 @@ const THRESHOLDS: [(&str, [f64; 8]); 8] = [
     ),
     ("coop", [1e-3, 300.0, 1100.0, 5.0, 1e-3, 400.0, 400.0, 4.0]),
     ("lshade", [1e-8, 2.0, 200.0, 1e-4, 1e-6, 5.0, 60.0, 1e-3]),
+    (
+        "cmaes",
+        [1e-17, 70.0, 150.0, 1e-9, 1e-17, 60.0, 200.0, 1e-9],
+    ),
 ];
 
 fn run(

@@ -444,4 +444,23 @@ mod tests {
         assert_eq!(Lshade::initial_population(&p, 150), 100);
         assert_eq!(Lshade::initial_population(&p, 0), 4);
     }
+
+    #[test]
+    fn the_population_shrinks_linearly_to_its_minimum() {
+        use crate::optim::solve;
+        use crate::optim::test_problems::Sphere;
+        use crate::optim::Budget;
+        let p = Sphere(vec![Bound::new(-5.0, 5.0); 3]);
+        let mut opt = Lshade::new(LshadeParams::DEFAULT);
+        let out = solve(
+            &p,
+            &mut opt,
+            Budget::evaluations(2000),
+            &mut crate::rng::rng_from_seed(1),
+            &mut |_| {},
+        );
+        assert_eq!(out.evaluations, 2000);
+        assert_eq!(opt.population(), 4, "N_min at the end of the budget");
+        assert!(out.best.cost < 1e-6, "{}", out.best.cost);
+    }
 }

@@ -13,6 +13,7 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 use super::abc::{Abc, AbcParams};
+use super::cmaes::{Cmaes, CmaesParams};
 use super::cooperative::{CoopParams, Cooperative};
 use super::dls_exemplar::{DlsExemplar, DlsExemplarParams};
 use super::dls_paper::{DlsPaper, DlsPaperParams};
@@ -76,10 +77,12 @@ pub enum OptimizerKind {
     Coop,
     /// L-SHADE ([`super::lshade`]): a modern baseline, CEC 2014's winner.
     Lshade,
+    /// CMA-ES with IPOP restarts ([`super::cmaes`]): a modern baseline.
+    Cmaes,
 }
 
 impl OptimizerKind {
-    pub const ALL: [Self; 8] = [
+    pub const ALL: [Self; 9] = [
         Self::Pso,
         Self::DlsPaper,
         Self::DlsExemplar,
@@ -88,6 +91,7 @@ impl OptimizerKind {
         Self::Abc,
         Self::Coop,
         Self::Lshade,
+        Self::Cmaes,
     ];
 
     #[must_use]
@@ -101,6 +105,7 @@ impl OptimizerKind {
             Self::Abc => "abc",
             Self::Coop => "coop",
             Self::Lshade => "lshade",
+            Self::Cmaes => "cmaes",
         }
     }
 }
@@ -163,6 +168,7 @@ pub struct OptimizerParams {
     /// swarmplan's cooperative optimizer.
     pub coop: CoopParams,
     pub lshade: LshadeParams,
+    pub cmaes: CmaesParams,
 }
 
 impl OptimizerParams {
@@ -175,6 +181,7 @@ impl OptimizerParams {
         abc: AbcParams::DEFAULT,
         coop: CoopParams::DEFAULT,
         lshade: LshadeParams::DEFAULT,
+        cmaes: CmaesParams::DEFAULT,
     };
 
     /// Checks every section; the error names the first bad field with its section.
@@ -190,7 +197,8 @@ impl OptimizerParams {
         self.gwo.validate().map_err(|e| e.within("gwo"))?;
         self.abc.validate().map_err(|e| e.within("abc"))?;
         self.coop.validate().map_err(|e| e.within("coop"))?;
-        self.lshade.validate().map_err(|e| e.within("lshade"))
+        self.lshade.validate().map_err(|e| e.within("lshade"))?;
+        self.cmaes.validate().map_err(|e| e.within("cmaes"))
     }
 
     /// The population size `kind` will use (for ABC: bees, twice the food sources).
@@ -205,6 +213,7 @@ impl OptimizerParams {
             OptimizerKind::Abc => self.abc.population,
             OptimizerKind::Coop => self.coop.population,
             OptimizerKind::Lshade => self.lshade.max_population,
+            OptimizerKind::Cmaes => self.cmaes.population,
         }
     }
 
@@ -218,6 +227,7 @@ impl OptimizerParams {
         self.abc.population = n;
         self.coop.population = n;
         self.lshade.max_population = n.max(self.lshade.min_population);
+        self.cmaes.population = n.max(4);
     }
 }
 
@@ -241,6 +251,7 @@ pub fn build(kind: OptimizerKind, params: &OptimizerParams) -> Box<dyn Optimizer
         OptimizerKind::Abc => Box::new(Abc::new(params.abc)),
         OptimizerKind::Coop => Box::new(Cooperative::new(params.coop)),
         OptimizerKind::Lshade => Box::new(Lshade::new(params.lshade)),
+        OptimizerKind::Cmaes => Box::new(Cmaes::new(params.cmaes)),
     }
 }
 
@@ -280,6 +291,8 @@ mod tests {
                 OptimizerKind::Coop => 10,
                 // L-SHADE's initial population cap; it shrinks to 4 over the run.
                 OptimizerKind::Lshade => 100,
+                // CMA-ES: 0 = 4 + floor(3 ln n), from the dimension.
+                OptimizerKind::Cmaes => 0,
                 _ => 50,
             };
             assert_eq!(p.population(a), want, "{a}");
