@@ -181,7 +181,7 @@ pub struct SettingsArgs {
     #[arg(long)]
     pub evaluations: Option<u64>,
     /// Optimizer parameters as TOML (sections pso, dls_smpso, dls_exemplar, qpso, gwo, abc,
-    /// coop).
+    /// coop, lshade, cmaes).
     #[arg(long)]
     pub params: Option<PathBuf>,
 }
