@@ -52,6 +52,11 @@ pub struct RunRecord {
     pub seconds: f64,
     /// Best cost per UAV after initialisation and after each iteration.
     pub convergence: Vec<f64>,
+    /// Evaluations spent at each point of `convergence` (empty in records written before
+    /// it existed), so methods with different evaluations per iteration compare over
+    /// evaluations.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub convergence_evaluations: Vec<u64>,
 }
 
 impl RunRecord {
@@ -118,6 +123,7 @@ impl RunRecord {
                 .iter()
                 .map(|r| finite(r.best_cost / n))
                 .collect(),
+            convergence_evaluations: result.outcome.trace.iter().map(|r| r.evaluations).collect(),
         }
     }
 }

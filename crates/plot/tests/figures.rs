@@ -65,6 +65,16 @@ fn record(alg: Method, run: usize, cost: f64, feasible: bool) -> RunRecord {
         iterations: 30,
         seconds: 0.1,
         convergence,
+        // Methods spend different evaluations per iteration.
+        convergence_evaluations: (0..31)
+            .map(|k| {
+                50 + k
+                    * (20
+                        + 10 * u64::from(
+                            alg.optimizer == swarmplan_core::optim::OptimizerKind::Pso,
+                        ))
+            })
+            .collect(),
     }
 }
 
@@ -221,10 +231,24 @@ fn every_figure_renders_on_the_tiny_scenario() {
     );
 
     let recs = records();
-    check(
-        &convergence_bench(&recs, "tiny", dir.path().join("bench_conv")).unwrap(),
-        size,
-    );
+    let conv = convergence_bench(&recs, "tiny", dir.path().join("bench_conv")).unwrap();
+    check(&conv, size);
+    // Over evaluations when the records carry them; over iterations for older records.
+    assert!(std::fs::read_to_string(&conv.svg)
+        .unwrap()
+        .contains("\nevaluations\n"));
+    let old: Vec<RunRecord> = recs
+        .iter()
+        .cloned()
+        .map(|mut r| {
+            r.convergence_evaluations.clear();
+            r
+        })
+        .collect();
+    let conv = convergence_bench(&old, "tiny", dir.path().join("bench_conv_old")).unwrap();
+    assert!(std::fs::read_to_string(&conv.svg)
+        .unwrap()
+        .contains("iteration (0 = after"));
     check(
         &bench_boxplots(&recs, "tiny", dir.path().join("bench_box")).unwrap(),
         size,

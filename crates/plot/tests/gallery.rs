@@ -62,6 +62,7 @@ fn synthetic_records() -> Vec<RunRecord> {
                 iterations: 200,
                 seconds: 1.0,
                 convergence,
+                convergence_evaluations: Vec::new(),
             });
         }
     }
