@@ -87,29 +87,27 @@ pub fn load_spec(name_or_path: &str) -> Result<LoadedSpec, ScenarioError> {
             text: (*text).to_string(),
         });
     }
-    if let Some(req) = crate::generate::GenerateRequest::from_name(name_or_path) {
-        let spec = crate::generate::generate(&req).map_err(|e| ScenarioError::Generated {
+    // Scenarios made from their name: generated ones and the outside instances.
+    let made = |source: &str, spec: Result<ScenarioSpec, String>| {
+        let spec = spec.map_err(|message| ScenarioError::Generated {
             name: name_or_path.to_string(),
-            message: e.to_string(),
+            message,
         })?;
-        return Ok(LoadedSpec {
+        Ok(LoadedSpec {
             text: to_toml(&spec),
             spec,
-            origin: format!("generated:{name_or_path}"),
+            origin: format!("{source}:{name_or_path}"),
             base_dir: PathBuf::from("."),
-        });
+        })
+    };
+    if let Some(req) = crate::generate::GenerateRequest::from_name(name_or_path) {
+        return made(
+            "generated",
+            crate::generate::generate(&req).map_err(|e| e.to_string()),
+        );
     }
     if let Some(spec) = crate::outside::load_named(name_or_path) {
-        let spec = spec.map_err(|e| ScenarioError::Generated {
-            name: name_or_path.to_string(),
-            message: e.to_string(),
-        })?;
-        return Ok(LoadedSpec {
-            text: to_toml(&spec),
-            spec,
-            origin: format!("outside:{name_or_path}"),
-            base_dir: PathBuf::from("."),
-        });
+        return made("outside", spec.map_err(|e| e.to_string()));
     }
     let path = Path::new(name_or_path);
     if !path.exists() {

@@ -142,23 +142,7 @@ impl<'a> TopView<'a> {
             Shape::RingCross,
             RGBColor(60, 60, 60),
         ));
-        if !self.marks.segments.is_empty() {
-            e.push(Entry::line(
-                "violating segment",
-                style::VIOLATION,
-                s.px(9.0),
-            ));
-        }
-        if !self.marks.places.is_empty() {
-            e.push(Entry::marker(
-                "violation (kind)",
-                Shape::Diamond,
-                style::VIOLATION,
-            ));
-        }
-        if let Some(note) = self.marks.unplaced_note() {
-            e.push(Entry::Note(note));
-        }
+        e.extend(self.marks.legend_entries(s));
         e.push(Entry::patch(
             "threat: r + size",
             style::THREAT.mix(0.35),

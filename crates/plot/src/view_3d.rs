@@ -154,21 +154,7 @@ impl<'a> View3d<'a> {
             };
             e.push(Entry::marker(g.name.clone(), shape, BLACK));
         }
-        if !self.marks.is_empty() {
-            e.push(Entry::line(
-                "violating segment",
-                style::VIOLATION,
-                s.px(9.0),
-            ));
-            e.push(Entry::marker(
-                "violation (kind)",
-                Shape::Diamond,
-                style::VIOLATION,
-            ));
-        }
-        if let Some(note) = self.marks.unplaced_note() {
-            e.push(Entry::Note(note));
-        }
+        e.extend(self.marks.legend_entries(s));
         e.push(Entry::Note(String::new()));
         e.push(Entry::Note("x: east, m; y: north, m".into()));
         e.push(Entry::Note("vertical: altitude above datum, m".into()));

@@ -16,6 +16,9 @@ use swarmplan_core::plan::Plan;
 use swarmplan_core::timing::TimedPlan;
 use swarmplan_core::world::World;
 
+use crate::legend::{Entry, Shape};
+use crate::style::{self, Scale};
+
 /// A segment of one UAV's path that breaks a constraint along its length.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct BadSegment {
@@ -108,8 +111,27 @@ impl ViolationMarks {
         marks
     }
 
-    pub(crate) fn is_empty(&self) -> bool {
-        self.segments.is_empty() && self.places.is_empty() && self.unplaced.is_empty()
+    /// The legend entries of the marks drawn (none for a plan without violations).
+    pub(crate) fn legend_entries(&self, s: Scale) -> Vec<Entry> {
+        let mut e = Vec::new();
+        if !self.segments.is_empty() {
+            e.push(Entry::line(
+                "violating segment",
+                style::VIOLATION,
+                s.px(9.0),
+            ));
+        }
+        if !self.places.is_empty() {
+            e.push(Entry::marker(
+                "violation (kind)",
+                Shape::Diamond,
+                style::VIOLATION,
+            ));
+        }
+        if let Some(note) = self.unplaced_note() {
+            e.push(Entry::Note(note));
+        }
+        e
     }
 
     /// One legend line for the violations without a place, e.g. `also: speed 2, energy 1`.
@@ -186,7 +208,8 @@ mod tests {
     #[test]
     fn a_feasible_plan_has_no_marks() {
         let m = ViolationMarks::from_violations(&[], segment);
-        assert!(m.is_empty());
+        assert_eq!(m, ViolationMarks::default());
+        assert!(m.legend_entries(Scale::of((1200, 900))).is_empty());
         assert_eq!(m.unplaced_note(), None);
     }
 }
