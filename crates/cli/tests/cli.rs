@@ -453,3 +453,28 @@ fn exporting_an_infeasible_plan_warns_and_the_files_say_so() {
     }
     assert!(seen >= 3, "{seen} export files found");
 }
+
+#[test]
+fn an_error_says_its_cause_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(
+        &bad,
+        "name = \"x\"\n[goal]\nposition = [800, 800, 150]\n[[uavs]]\nbattery_wh = -2\n",
+    )
+    .unwrap();
+    let out = swarmplan()
+        .args(["plan", "--scenario"])
+        .arg(&bad)
+        .assert()
+        .code(2);
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert_eq!(
+        stderr
+            .matches("battery_wh: a positive number, got -2")
+            .count(),
+        1,
+        "{stderr}"
+    );
+    assert!(stderr.contains("bad.toml"), "{stderr}");
+}
