@@ -429,3 +429,48 @@ fn the_profile_is_named_in_records_and_the_summary() {
         .code(2)
         .stderr(predicate::str::contains("expected `strict` or `paper`"));
 }
+
+#[test]
+fn a_bench_over_instances_ranks_the_methods_across_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("suite");
+    Command::cargo_bin("swarmplan")
+        .unwrap()
+        .args([
+            "bench",
+            "--scenarios",
+            "tiny,gen-s1-u2-t2",
+            "--algos",
+            "spso,qpso,gwo",
+            "--runs",
+            "3",
+            "--iterations",
+            "5",
+            "--population",
+            "8",
+            "--seed",
+            "2",
+        ])
+        .arg("--out")
+        .arg(&out)
+        .assert()
+        .success();
+    let md = std::fs::read_to_string(out.join("summary.md")).unwrap();
+    assert!(md.contains("## Across 2 instances"), "{md}");
+    assert!(
+        md.contains("Friedman test over 2 instances and 3 methods"),
+        "{md}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let ranks = &json["rankings"][0]["friedman"]["mean_ranks"];
+    let sum: f64 = ranks
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r.as_f64().unwrap())
+        .sum();
+    assert!((sum - 6.0).abs() < 1e-12, "mean ranks {ranks}");
+    assert!(out.join("performance_profile.png").exists());
+    assert!(out.join("performance_profile.svg").exists());
+}

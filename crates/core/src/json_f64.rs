@@ -47,6 +47,33 @@ pub fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<f64, D:
     deserializer.deserialize_any(F64Visitor)
 }
 
+/// The same for every element of a `Vec<f64>`: `#[serde(with = "json_f64::vec")]`.
+pub mod vec {
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    #[derive(Serialize, Deserialize)]
+    struct Item(#[serde(with = "super")] f64);
+
+    /// Writes each element as [`super::serialize`] does.
+    ///
+    /// # Errors
+    /// Whatever the serializer returns.
+    pub fn serialize<S: Serializer>(values: &[f64], serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_seq(values.iter().map(|v| Item(*v)))
+    }
+
+    /// Reads a sequence of numbers or `"inf"`, `"-inf"`, `"nan"`.
+    ///
+    /// # Errors
+    /// An element that is neither.
+    pub fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Vec<f64>, D::Error> {
+        Ok(Vec::<Item>::deserialize(deserializer)?
+            .into_iter()
+            .map(|i| i.0)
+            .collect())
+    }
+}
+
 struct F64Visitor;
 
 impl Visitor<'_> for F64Visitor {

@@ -5,6 +5,7 @@
 
 pub mod aggregate;
 pub mod matrix;
+pub mod ranking;
 pub mod record;
 pub mod runner;
 pub mod stats;

@@ -1,6 +1,7 @@
 //! The summary of an experiment: per scenario and method the feasible share and cost
 //! statistics, and the tests that settle comparisons (rank-sum against DLS-SMPSO with Holm's
-//! correction, Fisher's exact test on feasibility, Friedman's test with average ranks).
+//! correction, Fisher's exact test on feasibility, Friedman's test with average ranks), and,
+//! over a suite of instances, the methods ranked across them ([`crate::ranking`]).
 //!
 //! **Friedman's blocks.** Friedman's test ranks the methods within blocks, so a block must
 //! pair something. Here a block is a run index k of one scenario: the matrix gives run k of
@@ -22,6 +23,7 @@ use swarmplan_core::feasibility::FeasibilityProfile;
 use swarmplan_core::method::Method;
 use swarmplan_core::optim::OptimizerKind;
 
+use crate::ranking::{rank_across_instances, SuiteRanking};
 use crate::record::RunRecord;
 use crate::stats::{
     fisher_exact, friedman, holm, rank_sum, summarize, FriedmanTest, RankSumMethod, Summary,
@@ -88,6 +90,9 @@ pub struct ExperimentSummary {
     #[serde(default)]
     pub profiles: Vec<FeasibilityProfile>,
     pub scenarios: Vec<ScenarioSummary>,
+    /// Across the instances of a suite, per parameter set (none for a single scenario).
+    #[serde(default)]
+    pub rankings: Vec<SuiteRanking>,
 }
 
 /// The method others are compared with, when it is part of the experiment: DLS-SMPSO.
@@ -199,11 +204,13 @@ pub fn summarize_records(master_seed: u64, records: &[RunRecord]) -> ExperimentS
             friedman_note,
         });
     }
+    let rankings = rank_across_instances(&scenarios);
     ExperimentSummary {
         master_seed,
         records: records.len(),
         profiles,
         scenarios,
+        rankings,
     }
 }
 
@@ -356,7 +363,95 @@ pub fn markdown(s: &ExperimentSummary) -> String {
             let _ = writeln!(out, "\n{}.\n", sc.friedman_note);
         }
     }
+    for r in &s.rankings {
+        ranking_markdown(&mut out, r);
+    }
     out
+}
+
+/// The across-instances section of `summary.md`.
+fn ranking_markdown(out: &mut String, r: &SuiteRanking) {
+    let _ = writeln!(
+        out,
+        "## Across {} instances (parameter set `{}`)\n\nPer instance, each method is scored by its FR first and its median cost per UAV over all runs second, and ranked (1 = best, ties share the mean rank); the instances are the blocks of Friedman's test.{}\n",
+        r.instances.len(),
+        r.param_set,
+        if r.left_out.is_empty() {
+            String::new()
+        } else {
+            format!(" Left out (some method has no run there): {}.", r.left_out.join(", "))
+        }
+    );
+    let mut order: Vec<usize> = (0..r.methods.len()).collect();
+    if let Some(f) = &r.friedman {
+        order.sort_by(|&a, &b| f.mean_ranks[a].total_cmp(&f.mean_ranks[b]));
+    }
+    let _ = writeln!(
+        out,
+        "| method | average rank | instances won | mean FR(%) |\n|---|---|---|---|"
+    );
+    for &j in &order {
+        let rank = r
+            .friedman
+            .as_ref()
+            .map_or("-".into(), |f| format!("{:.2}", f.mean_ranks[j]));
+        let _ = writeln!(
+            out,
+            "| {} | {rank} | {} | {:.1} |",
+            r.methods[j], r.wins[j], r.mean_fr_percent[j]
+        );
+    }
+    match &r.friedman {
+        Some(f) => {
+            let _ = writeln!(
+                out,
+                "\nFriedman test over {} instances and {} methods: chi2 = {:.3}, df = {}, p = {}.\n",
+                r.instances.len(),
+                r.methods.len(),
+                f.statistic,
+                f.df,
+                p(f.p_value)
+            );
+        }
+        None => {
+            let _ = writeln!(
+                out,
+                "\nNo Friedman test (needs two instances and no NaN).\n"
+            );
+        }
+    }
+    if !r.pairs.is_empty() {
+        let _ = writeln!(out, "Pairwise post-hoc test on the average ranks (Demšar 2006), two-sided, Holm-adjusted over all {} pairs; in each pair the first method has the better (lower) average rank, z = rank difference / SE.\n\n| pair | z | p | p (Holm) |\n|---|---|---|---|", r.pairs.len());
+        let mut pairs: Vec<_> = r.pairs.iter().collect();
+        pairs.sort_by(|a, b| a.p_holm.total_cmp(&b.p_holm));
+        for t in pairs {
+            let (better, worse) = if t.z <= 0.0 { (t.a, t.b) } else { (t.b, t.a) };
+            let _ = writeln!(
+                out,
+                "| {} vs {} | {:.2} | {} | {} |",
+                r.methods[better],
+                r.methods[worse],
+                t.z.abs(),
+                p(t.p_value),
+                p(t.p_holm)
+            );
+        }
+    }
+    let head: Vec<String> = order.iter().map(|&j| r.methods[j].to_string()).collect();
+    let _ = writeln!(
+        out,
+        "\nPer instance, FR(%) / median cost per UAV:\n\n| instance | {} |\n|---|{}",
+        head.join(" | "),
+        "---|".repeat(order.len())
+    );
+    for i in &r.instances {
+        let cells: Vec<String> = order
+            .iter()
+            .map(|&j| format!("{:.0} / {}", i.fr_percent[j], num(Some(i.median_cost[j]))))
+            .collect();
+        let _ = writeln!(out, "| {} | {} |", i.scenario, cells.join(" | "));
+    }
+    out.push('\n');
 }
 
 /// `summary.csv`: one row per scenario, parameter set and method.

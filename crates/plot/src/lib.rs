@@ -13,6 +13,7 @@
 //! | [`convergence_bench`] | `convergence_bench.rs` | median and inter-quartile band per algorithm |
 //! | [`comm_timeline`] | `comm_timeline.rs` | contact per UAV over time, R(t), interference windows |
 //! | [`bench_boxplots`] | `bench_boxplots.rs` | cost per UAV per algorithm, feasible rate per algorithm |
+//! | [`performance_profile`] | `performance_profile.rs` | share of a suite's instances within tau of the best median cost, per method |
 //!
 //! Text is drawn with DejaVu Sans from the `dejavu` crate through plotters' pure-Rust
 //! `ab_glyph` path, so figures render the same on machines without any system font or font
@@ -26,6 +27,7 @@ mod contour;
 mod convergence_bench;
 mod convergence_run;
 mod legend;
+mod performance_profile;
 mod records;
 mod render;
 mod sampling;
@@ -39,6 +41,7 @@ pub use bench_boxplots::bench_boxplots;
 pub use comm_timeline::comm_timeline;
 pub use convergence_bench::convergence_bench;
 pub use convergence_run::convergence_run;
+pub use performance_profile::performance_profile;
 pub use render::{PlotError, Target, Written};
 pub use style::uav_colour_hex;
 pub use top_view::top_view;

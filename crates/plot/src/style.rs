@@ -107,9 +107,10 @@ pub fn uav_colour_hex(i: usize) -> String {
     format!("#{r:02x}{g:02x}{b:02x}")
 }
 
-/// Colour of the `i`-th series of a comparison (algorithms).
+/// Colour of the `i`-th series of a comparison (algorithms): the ten "tab10" colours, so
+/// every preset of a full bench has its own.
 pub(crate) fn series_colour(i: usize) -> RGBColor {
-    const C: [RGBColor; 8] = [
+    const C: [RGBColor; 10] = [
         RGBColor(31, 119, 180),
         RGBColor(255, 127, 14),
         RGBColor(44, 160, 44),
@@ -118,6 +119,8 @@ pub(crate) fn series_colour(i: usize) -> RGBColor {
         RGBColor(140, 86, 75),
         RGBColor(227, 119, 194),
         RGBColor(90, 90, 90),
+        RGBColor(188, 189, 34),
+        RGBColor(23, 190, 207),
     ];
     C[i % C.len()]
 }

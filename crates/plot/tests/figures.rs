@@ -13,8 +13,8 @@ use swarmplan_core::world::World;
 use swarmplan_experiment::record::RunRecord;
 use swarmplan_io::scenario::{build_world, load_spec};
 use swarmplan_plot::{
-    bench_boxplots, comm_timeline, convergence_bench, convergence_run, top_view, view_3d,
-    PlotError, Target, Written,
+    bench_boxplots, comm_timeline, convergence_bench, convergence_run, performance_profile,
+    top_view, view_3d, PlotError, Target, Written,
 };
 
 fn tiny() -> World {
@@ -253,6 +253,36 @@ fn every_figure_renders_on_the_tiny_scenario() {
         &bench_boxplots(&recs, "tiny", dir.path().join("bench_box")).unwrap(),
         size,
     );
+}
+
+#[test]
+fn a_performance_profile_counts_the_instances_each_method_wins() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut recs = records();
+    // A second instance on which the order is reversed: PSO cheapest, DLS-SMPSO dearest.
+    let second: Vec<RunRecord> = recs
+        .iter()
+        .cloned()
+        .map(|mut r| {
+            r.scenario = "tiny-2".into();
+            if r.cost_per_uav.is_finite() {
+                r.cost_per_uav = 5000.0 - r.cost_per_uav;
+            }
+            r
+        })
+        .collect();
+    recs.extend(second);
+    let w = performance_profile(&recs, dir.path().join("profile")).unwrap();
+    check(&w, Target::DEFAULT_SIZE);
+    let svg = std::fs::read_to_string(&w.svg).unwrap();
+    assert!(svg.contains("over 2 instances"), "title");
+    assert!(svg.contains("dls-smpso (best on 1 of 2)"), "legend");
+    assert!(svg.contains("spso (best on 0 of 2)"), "legend");
+    assert!(svg.contains("pso (best on 1 of 2)"), "legend");
+    // One instance is not a profile.
+    let one: Vec<RunRecord> = recs.into_iter().filter(|r| r.scenario == "tiny").collect();
+    let e = performance_profile(&one, dir.path().join("one")).unwrap_err();
+    assert!(matches!(e, PlotError::NoData { .. }), "{e}");
 }
 
 #[test]

@@ -288,7 +288,11 @@ pub fn run_aggregate(args: &AggregateArgs) -> Result<()> {
         records.len(),
         args.dirs.len()
     );
-    write_summary(&args.out, &summary)
+    write_summary(&args.out, &summary)?;
+    for f in super::plot::bench_figures(&args.out, &records)? {
+        eprintln!("wrote {} (and .svg)", f.display());
+    }
+    Ok(())
 }
 
 fn write_summary(dir: &Path, s: &ExperimentSummary) -> Result<()> {

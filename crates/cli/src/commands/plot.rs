@@ -47,6 +47,7 @@ pub fn bench_figures(dir: &Path, records: &[RunRecord]) -> Result<Vec<PathBuf>> 
     let mut scenarios: Vec<&str> = records.iter().map(|r| r.scenario.as_str()).collect();
     scenarios.sort_unstable();
     scenarios.dedup();
+    let scenario_count = scenarios.len();
     let mut out = Vec::new();
     for sc in scenarios {
         let safe: String = sc
@@ -65,6 +66,17 @@ pub fn bench_figures(dir: &Path, records: &[RunRecord]) -> Result<Vec<PathBuf>> 
         swarmplan_plot::convergence_bench(records, sc, &conv)?;
         out.push(boxes.with_extension("png"));
         out.push(conv.with_extension("png"));
+    }
+    if scenario_count > 1 {
+        let profile = dir.join("performance_profile");
+        match swarmplan_plot::performance_profile(records, &profile) {
+            Ok(_) => out.push(profile.with_extension("png")),
+            // Scenarios without a method in common: nothing to profile, said once.
+            Err(e @ swarmplan_plot::PlotError::NoData { .. }) => {
+                eprintln!("no performance profile: {e}");
+            }
+            Err(e) => return Err(e.into()),
+        }
     }
     Ok(out)
 }

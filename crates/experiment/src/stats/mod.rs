@@ -13,6 +13,7 @@
 //! | [`holm`] | p-values adjusted for many pairwise comparisons | `statsmodels` `multipletests(method='holm')` |
 //! | [`fisher_exact`] | do two algorithms' success rates differ? (2x2, two-sided) | `scipy.stats.fisher_exact` |
 //! | [`friedman`] | do k algorithms differ over the same scenarios or seeds? | `scipy.stats.friedmanchisquare` |
+//! | [`mean_rank_posthoc`] | which pairs differ, after Friedman (Holm over all pairs) | Demšar (2006), worked example |
 //!
 //! Conventions shared by all:
 //! - Costs are "lower is better" and may be `+inf` (an infeasible or failed run); `+inf`
@@ -29,6 +30,7 @@ mod descriptive;
 mod fisher;
 mod friedman;
 mod holm;
+mod posthoc;
 pub use swarmplan_core::json_f64;
 mod ranks;
 mod ranksum;
@@ -37,4 +39,5 @@ pub use descriptive::{summarize, Summary};
 pub use fisher::fisher_exact;
 pub use friedman::{friedman, FriedmanTest};
 pub use holm::holm;
+pub use posthoc::{mean_rank_posthoc, PairwiseRankTest};
 pub use ranksum::{exact_upper_tail, rank_sum, RankSumMethod, RankSumTest, EXACT_MAX_PAIRS};
