@@ -41,6 +41,9 @@ pub struct GroupSummary {
     pub feasible: usize,
     /// Feasibility ratio, percent.
     pub fr_percent: f64,
+    /// Infeasible runs whose best plan has at most [`NEAR_MISS_VIOLATIONS`] hard violations.
+    #[serde(default)]
+    pub near_misses: usize,
     /// Cost per UAV over all runs.
     pub cost: Option<Summary>,
     /// Cost per UAV over feasible runs only.
@@ -52,6 +55,10 @@ pub struct GroupSummary {
     /// Against the reference method (absent for the reference itself).
     pub versus_reference: Option<Versus>,
 }
+
+/// An infeasible run with at most this many hard violations (counted over UAVs and kinds)
+/// is a near miss: a plan one or two local repairs away from flying.
+pub const NEAR_MISS_VIOLATIONS: usize = 2;
 
 /// Tests of one method against the reference (DLS-SMPSO).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -136,6 +143,12 @@ pub fn summarize_records(master_seed: u64, records: &[RunRecord]) -> ExperimentS
                 let rs: Vec<&RunRecord> = mine.iter().filter(|r| r.method == a).copied().collect();
                 let n = rs.len();
                 let feasible = rs.iter().filter(|r| r.feasible).count();
+                let near_misses = rs
+                    .iter()
+                    .filter(|r| {
+                        !r.feasible && r.violations.values().sum::<usize>() <= NEAR_MISS_VIOLATIONS
+                    })
+                    .count();
                 let all = costs(a);
                 let feas: Vec<f64> = rs
                     .iter()
@@ -151,6 +164,7 @@ pub fn summarize_records(master_seed: u64, records: &[RunRecord]) -> ExperimentS
                     runs: n,
                     feasible,
                     fr_percent: 100.0 * feasible as f64 / n as f64,
+                    near_misses,
                     cost: summarize(&all),
                     cost_feasible: summarize(&feas),
                     mean_evaluations: rs.iter().map(|r| r.evaluations as f64).sum::<f64>()
@@ -301,19 +315,20 @@ pub fn markdown(s: &ExperimentSummary) -> String {
                 g.fr_percent
             );
         }
-        let _ = writeln!(out, "\n| method | optimizer | encoding | init | runs | feasible | median | std | feasible runs: worst / best / mean / median / std | mean evaluations | mean s/run |\n|---|---|---|---|---|---|---|---|---|---|---|");
+        let _ = writeln!(out, "\n| method | optimizer | encoding | init | runs | feasible | near misses (<= 2 violations) | median | std | feasible runs: worst / best / mean / median / std | mean evaluations | mean s/run |\n|---|---|---|---|---|---|---|---|---|---|---|---|");
         for g in &sc.groups {
             let c = g.cost.as_ref();
             let f = g.cost_feasible.as_ref();
             let _ = writeln!(
                 out,
-                "| {} | {} | {} | {} | {} | {} | {} | {} | {} / {} / {} / {} / {} | {:.0} | {:.3} |",
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} / {} / {} / {} / {} | {:.0} | {:.3} |",
                 g.method,
                 g.optimizer,
                 g.encoding,
                 g.init,
                 g.runs,
                 g.feasible,
+                g.near_misses,
                 num(c.map(|c| c.median)),
                 num(c.map(|c| c.std)),
                 num(f.map(|c| c.max)),
@@ -457,7 +472,7 @@ fn ranking_markdown(out: &mut String, r: &SuiteRanking) {
 /// `summary.csv`: one row per scenario, parameter set and method.
 #[must_use]
 pub fn csv(s: &ExperimentSummary) -> String {
-    let mut out = String::from("scenario,param_set,method,optimizer,encoding,init,runs,feasible,fr_percent,worst,best,mean,median,std,feasible_worst,feasible_best,feasible_mean,feasible_median,feasible_std,mean_evaluations,mean_seconds,rank_sum_p,rank_sum_p_holm,fisher_p\n");
+    let mut out = String::from("scenario,param_set,method,optimizer,encoding,init,runs,feasible,near_misses,fr_percent,worst,best,mean,median,std,feasible_worst,feasible_best,feasible_mean,feasible_median,feasible_std,mean_evaluations,mean_seconds,rank_sum_p,rank_sum_p_holm,fisher_p\n");
     let opt = |v: Option<f64>| {
         v.map_or(String::new(), |x| {
             if x.is_finite() {
@@ -474,7 +489,7 @@ pub fn csv(s: &ExperimentSummary) -> String {
             let v = g.versus_reference.as_ref();
             let _ = writeln!(
                 out,
-                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
                 sc.scenario,
                 sc.param_set,
                 g.method,
@@ -483,6 +498,7 @@ pub fn csv(s: &ExperimentSummary) -> String {
                 g.init,
                 g.runs,
                 g.feasible,
+                g.near_misses,
                 g.fr_percent,
                 opt(c.map(|c| c.max)),
                 opt(c.map(|c| c.min)),

@@ -103,3 +103,18 @@ fn one_instance_has_no_ranking_across_instances() {
     let one: Vec<RunRecord> = suite().into_iter().filter(|r| r.scenario == "a").collect();
     assert!(summarize_records(1, &one).rankings.is_empty());
 }
+
+#[test]
+fn near_misses_are_infeasible_runs_with_at_most_two_violations() {
+    let mut recs = Vec::new();
+    for (run, count) in [1_usize, 2, 3].into_iter().enumerate() {
+        let mut r = record("a", "qpso", run, 10.0, false);
+        r.violations.insert("threat".into(), count);
+        recs.push(r);
+    }
+    recs.push(record("a", "qpso", 3, 5.0, true));
+    let s = summarize_records(1, &recs);
+    let g = &s.scenarios[0].groups[0];
+    assert_eq!((g.feasible, g.near_misses), (1, 2));
+    assert!(markdown(&s).contains("| 4 | 1 | 2 |"), "{}", markdown(&s));
+}
