@@ -79,6 +79,14 @@ pub fn parse_profile(s: &str) -> Result<swarmplan_core::feasibility::Feasibility
         .ok_or_else(|| format!("expected `strict` or `paper`, got `{s}`"))
 }
 
+/// A seed: a whole number in [0, 2^64 - 1]. Negative numbers reach this parser (the flag
+/// allows hyphen values) so they get this message instead of "unexpected argument".
+pub fn parse_seed(s: &str) -> Result<u64, String> {
+    s.trim()
+        .parse::<u64>()
+        .map_err(|_| format!("expected a whole number in [0, {}], got `{s}`", u64::MAX))
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {

@@ -16,6 +16,7 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 use swarmplan_core::plan::{Path as UavPath, Plan};
 use swarmplan_core::timing::TimedPlan;
+use swarmplan_core::world::channel::CHANNEL_HORIZON_S;
 use swarmplan_core::world::World;
 use thiserror::Error;
 
@@ -104,10 +105,22 @@ pub fn parse_plan(
     world: &World,
     provenance: Provenance,
 ) -> Result<Plan, PlanFileError> {
-    let file: PlanFile = serde_json::from_str(text).map_err(|e| PlanFileError::Parse {
+    let parse_error = |message: String| PlanFileError::Parse {
         path: origin.to_string(),
-        message: e.to_string(),
+        message,
+    };
+    let de = &mut serde_json::Deserializer::from_str(text);
+    let file: PlanFile = serde_path_to_error::deserialize(&mut *de).map_err(|e| {
+        let at = e.path().to_string();
+        let inner = e.into_inner();
+        parse_error(if at == "." || at.is_empty() {
+            inner.to_string()
+        } else {
+            format!("{at}: {inner}")
+        })
     })?;
+    de.end()
+        .map_err(|e| parse_error(format!("text after the plan object: {e}")))?;
     if provenance == Provenance::MustMatch {
         let mismatch = |what, recorded: &str, current: String| PlanFileError::Provenance {
             path: origin.to_string(),
@@ -169,6 +182,39 @@ pub fn parse_plan(
                     format!("expected finite numbers, got {w:?}"),
                 ));
             }
+        }
+        let (bx, by) = (world.spec.map.x, world.spec.map.y);
+        let slack = 1e-6 * (bx[1] - bx[0]).max(by[1] - by[0]);
+        for (k, w) in u.waypoints.iter().enumerate() {
+            let inside = w[0] >= bx[0] - slack
+                && w[0] <= bx[1] + slack
+                && w[1] >= by[0] - slack
+                && w[1] <= by[1] + slack;
+            if !inside {
+                return Err(invalid(
+                    format!("uavs[{i}].waypoints[{k}]"),
+                    format!(
+                        "expected a point in the map box x {bx:?}, y {by:?} (the model is defined there), got {w:?}"
+                    ),
+                ));
+            }
+        }
+        // The channel is tabulated over CHANNEL_HORIZON_S; a flight longer than that even at
+        // top speed is no plan (and would take hours to evaluate).
+        let length: f64 = u
+            .waypoints
+            .windows(2)
+            .map(|s| DVec3::from_array(s[0]).distance(DVec3::from_array(s[1])))
+            .sum();
+        let v_max = world.spec.uavs[i].speed[1];
+        if length / v_max > CHANNEL_HORIZON_S {
+            return Err(invalid(
+                format!("uavs[{i}].waypoints"),
+                format!(
+                    "the path is {length:.3e} m long: even at v_max {v_max} m/s the flight lasts {:.3e} s, beyond the {CHANNEL_HORIZON_S} s the model covers",
+                    length / v_max
+                ),
+            ));
         }
         let ends = [
             (0, world.start(i), "start"),

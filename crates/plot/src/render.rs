@@ -168,16 +168,49 @@ pub(crate) fn render(figure: &impl Figure, target: &Target) -> Result<Written, P
             message: e,
         }
     };
+    // Drawn into temporary files beside the targets and renamed over them once complete,
+    // so a full disk or a kill never leaves a truncated figure.
+    let png_tmp = partial(&png)?;
+    let svg_tmp = partial(&svg)?;
     {
-        let root = BitMapBackend::new(&png, size).into_drawing_area();
+        let root = BitMapBackend::new(png_tmp.path(), size).into_drawing_area();
         draw_on(figure, &root).map_err(draw_err(&png))?;
     }
     {
-        let root = SVGBackend::new(&svg, size).into_drawing_area();
+        let root = SVGBackend::new(svg_tmp.path(), size).into_drawing_area();
         draw_on(figure, &root).map_err(draw_err(&svg))?;
     }
-    fix_embedded_images(&svg).map_err(|e| draw_err(&svg)(e.to_string()))?;
+    fix_embedded_images(svg_tmp.path()).map_err(|e| draw_err(&svg)(e.to_string()))?;
+    png_tmp
+        .persist(&png)
+        .map_err(|e| draw_err(&png)(e.error.to_string()))?;
+    svg_tmp
+        .persist(&svg)
+        .map_err(|e| draw_err(&svg)(e.error.to_string()))?;
     Ok(Written { png, svg })
+}
+
+/// An empty temporary file beside `target`, with its extension (the bitmap encoder picks
+/// the format from it); removed on drop unless persisted.
+fn partial(target: &Path) -> Result<tempfile::NamedTempFile, PlotError> {
+    let dir = match target.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let name = target
+        .file_stem()
+        .map_or_else(|| "figure".into(), |n| n.to_string_lossy().into_owned());
+    let ext = target
+        .extension()
+        .map_or_else(String::new, |e| format!(".{}", e.to_string_lossy()));
+    tempfile::Builder::new()
+        .prefix(&format!(".{name}.partial."))
+        .suffix(&ext)
+        .tempfile_in(dir)
+        .map_err(|e| PlotError::Draw {
+            path: target.to_path_buf(),
+            message: format!("cannot create a temporary file: {e}"),
+        })
 }
 
 /// plotters-svg 0.3.7 embeds bitmaps as `data:png;base64,...`, which is not a MIME type;

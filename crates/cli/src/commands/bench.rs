@@ -40,7 +40,7 @@ pub struct BenchArgs {
     #[arg(long)]
     pub runs: Option<usize>,
     /// Master seed (default 1); every run's seed derives from it.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::parse_seed)]
     pub seed: Option<u64>,
     /// Worker threads (default: one per core).
     #[arg(long, default_value_t = 0)]
@@ -184,6 +184,7 @@ impl LogLines {
 
 pub fn run_bench(args: &BenchArgs) -> Result<()> {
     let spec = experiment(args)?;
+    super::out_folder::bench_folder(&args.out)?;
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?;
     let opts = RunnerOptions {
         threads: args.threads,

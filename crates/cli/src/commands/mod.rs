@@ -2,6 +2,7 @@
 pub mod bench;
 pub mod evaluate;
 pub mod export;
+pub mod out_folder;
 pub mod plan;
 pub mod plot;
 pub mod report;
@@ -10,16 +11,27 @@ pub mod scenario_generate;
 pub mod scenario_new;
 
 use anyhow::Result;
+use swarmplan_core::world::unreachable::unreachable_feasibility;
 use swarmplan_core::world::World;
 use swarmplan_io::scenario::{build_world, load_spec};
 
 use crate::ScenarioArgs;
 
-/// Loads the scenario and builds its world (terrain included).
+/// Loads the scenario and builds its world (terrain included); warns, once, about causes
+/// that make every plan infeasible.
 pub fn load_world(args: &ScenarioArgs) -> Result<World> {
     let mut loaded = load_spec(&args.scenario)?;
     if let Some(p) = args.profile {
         loaded.spec.planning.profile = p;
     }
-    Ok(build_world(&loaded, args.terrain.as_deref())?)
+    let world = build_world(&loaded, args.terrain.as_deref())?;
+    warn_unreachable(&loaded.origin, &world);
+    Ok(world)
+}
+
+/// Prints `warning: ORIGIN: FIELD: WHY; no plan can be feasible` for each cause found.
+pub fn warn_unreachable(origin: &str, world: &World) {
+    for u in unreachable_feasibility(world) {
+        eprintln!("warning: {origin}: {u}");
+    }
 }

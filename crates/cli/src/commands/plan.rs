@@ -12,6 +12,7 @@ use swarmplan_core::method::Method;
 use swarmplan_core::optim::{Budget, OptimizerParams};
 use swarmplan_core::run::{run_with_uav_trace, RunRequest};
 use swarmplan_io::artifact::{ArtifactFiles, RunArtifact};
+use swarmplan_io::atomic::write_atomic;
 use swarmplan_io::plan_file::plan_file;
 use swarmplan_io::scenario::to_toml;
 
@@ -34,7 +35,7 @@ pub struct PlanArgs {
     #[arg(long)]
     pub init: Option<InitKind>,
     /// Seed of the run (default: the scenario's `planning.seed`).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::parse_seed)]
     pub seed: Option<u64>,
     #[command(flatten)]
     pub settings: SettingsArgs,
@@ -56,6 +57,9 @@ pub struct PlanArgs {
     /// Exit with status 3 (after writing every output) when the plan is infeasible.
     #[arg(long)]
     pub require_feasible: bool,
+    /// Replace the plan already in --out (default: keep it and write to out-2, out-3, ...).
+    #[arg(long)]
+    pub force: bool,
     /// Stop after this many seconds of search, with the best plan so far (anytime
     /// planning; a run stopped by the clock is not reproducible, and says so).
     #[arg(long, value_name = "SECONDS", allow_hyphen_values = true)]
@@ -198,7 +202,11 @@ pub fn load_params(path: Option<&PathBuf>, population: Option<usize>) -> Result<
         }
     };
     if let Some(n) = population {
-        anyhow::ensure!(n >= 4, "--population: expected at least 4, got {n}");
+        anyhow::ensure!(
+            swarmplan_core::optim::params::POPULATION_RANGE.contains(&n),
+            "--population: expected {}, got {n}",
+            swarmplan_core::optim::params::POPULATION_EXPECTED
+        );
         params.set_population(n);
     }
     params.validate().map_err(|e| {
@@ -240,6 +248,8 @@ fn uav_series(trace: &[Vec<f64>]) -> Vec<Vec<f64>> {
 pub fn run_command(args: &PlanArgs) -> Result<()> {
     let world = super::load_world(&args.scenario)?;
     let params = load_params(args.settings.params.as_ref(), args.settings.population)?;
+    let out = super::out_folder::plan_folder(&args.out, args.force)?;
+    let out = out.as_path();
     let method = args.method.with(args.encoding, args.init);
     let req = RunRequest {
         method,
@@ -291,17 +301,15 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         );
     }
 
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("{}: cannot create", args.out.display()))?;
-    let plan_path = args.out.join("plan.json");
+    let plan_path = out.join("plan.json");
     let pf = plan_file(&world, &result.plan);
-    std::fs::write(&plan_path, serde_json::to_string_pretty(&pf)? + "\n")
-        .with_context(|| format!("{}: cannot write", plan_path.display()))?;
-    let conv_path = args.out.join("convergence.csv");
-    let mut csv = std::io::BufWriter::new(
-        std::fs::File::create(&conv_path)
-            .with_context(|| format!("{}: cannot write", conv_path.display()))?,
-    );
+    write_atomic(
+        &plan_path,
+        (serde_json::to_string_pretty(&pf)? + "\n").as_bytes(),
+    )
+    .with_context(|| format!("{}: cannot write", plan_path.display()))?;
+    let conv_path = out.join("convergence.csv");
+    let mut csv: Vec<u8> = Vec::new();
     let n = world.uav_count();
     let uav_columns: String = (0..n).map(|i| format!(",uav{i}_cost")).collect();
     writeln!(
@@ -323,7 +331,8 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             r.best_violation
         )?;
     }
-    csv.flush()?;
+    write_atomic(&conv_path, &csv)
+        .with_context(|| format!("{}: cannot write", conv_path.display()))?;
 
     let a = &result.assessment;
     let mut files = ArtifactFiles {
@@ -339,17 +348,20 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             &result.plan,
             formats,
             args.origin.as_deref(),
-            &args.out,
+            out,
         )?
         .iter()
         .map(|p| p.display().to_string())
         .collect();
     }
     let artifact = RunArtifact::new(&world, &result, req.budget, req.params, files);
-    let run_path = args.out.join("run.json");
-    std::fs::write(&run_path, serde_json::to_string_pretty(&artifact)? + "\n")
-        .with_context(|| format!("{}: cannot write", run_path.display()))?;
-    let scenario_path = args.out.join("scenario.toml");
+    let run_path = out.join("run.json");
+    write_atomic(
+        &run_path,
+        (serde_json::to_string_pretty(&artifact)? + "\n").as_bytes(),
+    )
+    .with_context(|| format!("{}: cannot write", run_path.display()))?;
+    let scenario_path = out.join("scenario.toml");
     let mut written_spec = world.spec.clone();
     if written_spec.terrain.source != "procedural" {
         // Absolute, so the folder's scenario.toml resolves from anywhere.
@@ -357,7 +369,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             written_spec.terrain.source = abs.display().to_string();
         }
     }
-    std::fs::write(&scenario_path, to_toml(&written_spec))
+    write_atomic(&scenario_path, to_toml(&written_spec).as_bytes())
         .with_context(|| format!("{}: cannot write", scenario_path.display()))?;
     let trace: Vec<f64> = result.outcome.trace.iter().map(|r| r.best_cost).collect();
     let title = super::plot::plan_title(&world.spec.name, &artifact);
@@ -365,7 +377,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         Vec::new()
     } else {
         super::plot::plan_figures(
-            &args.out,
+            out,
             &world,
             &result.plan,
             &trace,

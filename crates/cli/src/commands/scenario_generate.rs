@@ -11,7 +11,7 @@ use swarmplan_io::scenario::to_toml;
 #[derive(Debug, Args)]
 pub struct ScenarioGenerateArgs {
     /// Seed: the same seed and flags give the same scenario.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::parse_seed)]
     pub seed: u64,
     /// Number of UAVs.
     #[arg(long)]

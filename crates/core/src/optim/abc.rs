@@ -52,9 +52,9 @@ impl AbcParams {
 
     pub fn validate(&self) -> Result<(), ParamsError> {
         check(
-            self.population >= 4,
+            super::params::POPULATION_RANGE.contains(&self.population),
             "population",
-            "at least 4 (two food sources)",
+            super::params::POPULATION_EXPECTED,
             self.population,
         )
     }

@@ -65,7 +65,7 @@ impl CmaesParams {
             self.sigma,
         )?;
         check(
-            self.population == 0 || (4..=100_000).contains(&self.population),
+            self.population == 0 || super::params::POPULATION_RANGE.contains(&self.population),
             "population",
             "0 (automatic) or a whole number in [4, 100000]",
             self.population,

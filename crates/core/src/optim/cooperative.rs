@@ -106,9 +106,9 @@ impl CoopParams {
 
     pub fn validate(&self) -> Result<(), ParamsError> {
         check(
-            (2..=100_000).contains(&self.population),
+            super::params::POPULATION_RANGE.contains(&self.population),
             "population",
-            "a whole number in [2, 100000]",
+            super::params::POPULATION_EXPECTED,
             self.population,
         )?;
         check(

@@ -23,6 +23,13 @@ use super::pso::{Pso, PsoParams};
 use super::qpso::{Qpso, QpsoParams};
 use super::Optimizer;
 
+/// Population sizes every optimizer accepts, from a TOML section or `--population` alike: at
+/// least 4 (ABC's two food sources; DE's mutation needs three others), at most 100,000 (the
+/// swarm's arrays then stay below a few hundred MB on a 5-UAV plan).
+pub const POPULATION_RANGE: std::ops::RangeInclusive<usize> = 4..=100_000;
+/// How [`POPULATION_RANGE`] is said in messages.
+pub const POPULATION_EXPECTED: &str = "a whole number in [4, 100000]";
+
 /// A parameter with a bad value; `field` is its path (`dls_smpso.pso.velocity_clamp`).
 #[derive(Debug, Error, Clone, PartialEq)]
 #[error("{field}: expected {expected}, got {got}")]

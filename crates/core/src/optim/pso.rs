@@ -84,9 +84,9 @@ impl PsoParams {
     /// Checks every field; the error names the first bad one.
     pub fn validate(&self) -> Result<(), ParamsError> {
         check(
-            self.population >= 1,
+            super::params::POPULATION_RANGE.contains(&self.population),
             "population",
-            "at least 1",
+            super::params::POPULATION_EXPECTED,
             self.population,
         )?;
         check(

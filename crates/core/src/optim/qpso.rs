@@ -48,9 +48,9 @@ impl QpsoParams {
 
     pub fn validate(&self) -> Result<(), ParamsError> {
         check(
-            self.population >= 1,
+            super::params::POPULATION_RANGE.contains(&self.population),
             "population",
-            "at least 1",
+            super::params::POPULATION_EXPECTED,
             self.population,
         )?;
         check(

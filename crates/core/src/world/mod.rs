@@ -11,6 +11,7 @@ pub mod procedural;
 pub mod spec;
 pub mod terrain;
 pub mod threat;
+pub mod unreachable;
 pub mod validate;
 
 use glam::DVec3;
@@ -44,6 +45,13 @@ pub enum WorldError {
         bx: [f64; 2],
         by: [f64; 2],
     },
+    #[error("map: the box x {bx:?}, y {by:?} reaches beyond the terrain, which covers x [{}, {}], y [{}, {}] (the edge heights would be stretched over the rest); shrink the map box or use a terrain that covers it", .extent.0, .extent.2, .extent.1, .extent.3)]
+    MapBeyondTerrain {
+        bx: [f64; 2],
+        by: [f64; 2],
+        /// (x_min, y_min, x_max, y_max) of the terrain.
+        extent: (f64, f64, f64, f64),
+    },
     #[error("goal.position: ({x}, {y}) is outside the map box x {bx:?}, y {by:?}")]
     GoalOutside {
         x: f64,
@@ -70,6 +78,16 @@ impl World {
     pub fn new(spec: ScenarioSpec, terrain: Terrain) -> Result<Self, WorldError> {
         spec.validate()?;
         let (bx, by) = (spec.map.x, spec.map.y);
+        // One cell of slack: a DEM's nodes and a box drawn to its edges differ by rounding.
+        let extent = terrain.extent();
+        let (cx, cy) = terrain.cell();
+        if bx[0] < extent.0 - cx
+            || by[0] < extent.1 - cy
+            || bx[1] > extent.2 + cx
+            || by[1] > extent.3 + cy
+        {
+            return Err(WorldError::MapBeyondTerrain { bx, by, extent });
+        }
         let inside = |x: f64, y: f64| x >= bx[0] && x <= bx[1] && y >= by[0] && y <= by[1];
         for (k, u) in spec.uavs.iter().enumerate() {
             if !inside(u.start[0], u.start[1]) {

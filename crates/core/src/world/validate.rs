@@ -1,5 +1,17 @@
 //! Checks a [`ScenarioSpec`] before anything is built from it, so the hot path can assume
 //! valid values. Each error names the field (`uavs[2].speed`) and what was expected.
+//!
+//! **Work limits.** Some valid-looking values would make one evaluation take hours or a
+//! table take terabytes (a clearance sample every nanometre, a channel step of a
+//! nanosecond). The limits below are derived from the scenario's own size, so a large map
+//! may use a coarse step and a small one a fine step:
+//!
+//! | field | limit | why |
+//! |---|---|---|
+//! | `map.clearance_step` | >= map diagonal / [`MAX_SAMPLES_PER_SEGMENT`] | terrain samples per segment |
+//! | `communication.line_of_sight_step` | >= map diagonal / [`MAX_SAMPLES_PER_SEGMENT`] | line-of-sight samples per link, horizon table length per azimuth |
+//! | `communication.time_step` | >= [`MIN_TIME_STEP_S`] | channel table entries over its horizon, steps per evaluation |
+//! | map box | within [`MAX_MAP_EXTENT_M`] on each axis | keeps every table and sample count above finite |
 
 use thiserror::Error;
 
@@ -46,6 +58,14 @@ fn non_negative(field: &str, v: f64) -> Result<(), SpecError> {
     }
 }
 
+/// Most samples one segment (or one link) is checked at; see the module's table.
+pub const MAX_SAMPLES_PER_SEGMENT: f64 = 10_000.0;
+/// Smallest communication time step, seconds: the channel table then has at most
+/// 3600 / 0.01 = 360,000 entries.
+pub const MIN_TIME_STEP_S: f64 = 0.01;
+/// Largest side of the map box, metres (a 1,000 km square).
+pub const MAX_MAP_EXTENT_M: f64 = 1.0e6;
+
 fn range(field: &str, r: [f64; 2]) -> Result<(), SpecError> {
     if r[0].is_finite() && r[1].is_finite() && r[0] < r[1] {
         Ok(())
@@ -82,12 +102,46 @@ impl ScenarioSpec {
         range("map.x", m.x)?;
         range("map.y", m.y)?;
         range("map.z_agl", m.z_agl)?;
+        for (field, r) in [("map.x", m.x), ("map.y", m.y)] {
+            if r[1] - r[0] > MAX_MAP_EXTENT_M {
+                return Err(err(
+                    field,
+                    format!("a side of at most {MAX_MAP_EXTENT_M:.0} m"),
+                    format!("{r:?} ({:.3e} m)", r[1] - r[0]),
+                ));
+            }
+        }
         non_negative("map.clearance", m.clearance)?;
         positive("map.clearance_step", m.clearance_step)?;
+        let diagonal = (m.x[1] - m.x[0]).hypot(m.y[1] - m.y[0]);
+        let min_step = diagonal / MAX_SAMPLES_PER_SEGMENT;
+        let fine_enough = |field: &str, v: f64| {
+            if v >= min_step {
+                Ok(())
+            } else {
+                Err(err(
+                    field,
+                    format!("at least {min_step:.3} m on this map (its diagonal {diagonal:.0} m / {MAX_SAMPLES_PER_SEGMENT:.0} samples)"),
+                    v,
+                ))
+            }
+        };
+        fine_enough("map.clearance_step", m.clearance_step)?;
         self.terrain
             .procedural
             .validate()
             .map_err(|e| err("terrain.procedural", "valid parameters", e))?;
+        let pr = &self.terrain.procedural;
+        if self.terrain.source == "procedural" && pr.cell > 0.5 * pr.width.min(pr.height) {
+            return Err(err(
+                "terrain.procedural.cell",
+                format!(
+                    "at most half the terrain's smaller side ({} m)",
+                    0.5 * pr.width.min(pr.height)
+                ),
+                pr.cell,
+            ));
+        }
         for (k, t) in self.threats.iter().enumerate() {
             finite(&format!("threats[{k}].x"), t.x)?;
             finite(&format!("threats[{k}].y"), t.y)?;
@@ -115,6 +169,13 @@ impl ScenarioSpec {
                     return Err(err(f(name), "an angle in (0, 180] degrees", v));
                 }
             }
+            if u.max_climb_deg > 90.0 {
+                return Err(err(
+                    f("max_climb_deg"),
+                    "a climb angle in (0, 90] degrees (90: vertical climbs allowed, as SPSO)",
+                    u.max_climb_deg,
+                ));
+            }
             range(&f("speed"), u.speed)?;
             if u.speed[0] <= 0.0 {
                 return Err(err(f("speed"), "v_min > 0", u.speed[0]));
@@ -133,8 +194,16 @@ impl ScenarioSpec {
         non_negative("communication.shadowing_sigma_db", c.shadowing_sigma_db)?;
         positive("communication.shadowing_tau_s", c.shadowing_tau_s)?;
         positive("communication.time_step", c.time_step)?;
+        if c.time_step < MIN_TIME_STEP_S {
+            return Err(err(
+                "communication.time_step",
+                format!("at least {MIN_TIME_STEP_S} s"),
+                c.time_step,
+            ));
+        }
         non_negative("communication.max_outage_s", c.max_outage_s)?;
         positive("communication.line_of_sight_step", c.line_of_sight_step)?;
+        fine_enough("communication.line_of_sight_step", c.line_of_sight_step)?;
         non_negative("communication.outage_base_cost", c.outage_base_cost)?;
         for (k, n) in c.ground_nodes.iter().enumerate() {
             finite(

@@ -107,8 +107,8 @@ impl LocalFrame {
     pub fn tangent(origin: Geodetic) -> Result<Self, GeoError> {
         let origin = check_geodetic(origin, "origin")?;
         if origin.lat_deg.abs() > 89.999 {
-            return Err(GeoError::Latitude {
-                what: "origin (east and north are undefined at a pole)".into(),
+            return Err(GeoError::Pole {
+                what: "origin".into(),
                 value: origin.lat_deg,
             });
         }

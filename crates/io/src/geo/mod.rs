@@ -50,8 +50,10 @@ pub enum GeoError {
     Latitude { what: String, value: f64 },
     #[error("{what}: longitude must be a number in [-180, 180] degrees, got {value}")]
     Longitude { what: String, value: f64 },
-    #[error("{what}: altitude must be a finite number of metres, got {value}")]
+    #[error("{what}: altitude must be a number of metres in [{}, {}] (Earth's surface and the airspace above it), got {value}", MIN_ALTITUDE_M, MAX_ALTITUDE_M)]
     Altitude { what: String, value: f64 },
+    #[error("{what}: a tangent-plane origin needs a latitude strictly between -90 and 90 degrees (east and north are undefined at a pole), got {value}")]
+    Pole { what: String, value: f64 },
     #[error("{what}: expected {expected}, got `{got}`")]
     Syntax {
         what: String,
@@ -87,6 +89,11 @@ pub enum GeoError {
     Read(#[from] crate::dem::DemError),
 }
 
+/// Lowest altitude accepted, metres above sea level (the Dead Sea shore is at -430 m).
+pub const MIN_ALTITUDE_M: f64 = -1_000.0;
+/// Highest altitude accepted, metres above sea level (small UAVs fly far below).
+pub const MAX_ALTITUDE_M: f64 = 20_000.0;
+
 /// Checks that latitude, longitude and altitude are in range; `what` names the input.
 pub fn check_geodetic(g: Geodetic, what: &str) -> Result<Geodetic, GeoError> {
     if !(g.lat_deg.is_finite() && (-90.0..=90.0).contains(&g.lat_deg)) {
@@ -101,7 +108,7 @@ pub fn check_geodetic(g: Geodetic, what: &str) -> Result<Geodetic, GeoError> {
             value: g.lon_deg,
         });
     }
-    if !g.alt_m.is_finite() {
+    if !(g.alt_m.is_finite() && (MIN_ALTITUDE_M..=MAX_ALTITUDE_M).contains(&g.alt_m)) {
         return Err(GeoError::Altitude {
             what: what.into(),
             value: g.alt_m,

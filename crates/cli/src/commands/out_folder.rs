@@ -1,0 +1,75 @@
+//! Where a command's results go, settled before any work starts.
+//!
+//! A plan run can take minutes; finding out afterwards that `--out` names a file, or
+//! silently replacing the plan a previous run left there, loses work. So `plan` checks its
+//! folder first: a file or an unwritable place is an error (exit 2) before planning; a
+//! folder that already holds a plan is kept, and the new plan goes to the first free
+//! numbered sibling (`out-2`, `out-3`, ...), said on stderr, unless `--force` asks to
+//! replace it. Plan and bench folders are never mixed: `plan` refuses a folder with
+//! `runs.jsonl`, `bench` one with `plan.json`.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{bail, Context, Result};
+
+/// What a folder already holds.
+fn holds(dir: &Path, file: &str) -> bool {
+    dir.join(file).exists()
+}
+
+/// Fails unless `dir` can be created and written (checked by creating and removing a file).
+pub fn ensure_writable(dir: &Path, flag: &str) -> Result<()> {
+    if dir.exists() && !dir.is_dir() {
+        bail!("{flag} {}: is a file, expected a folder", dir.display());
+    }
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("{flag} {}: cannot create the folder", dir.display()))?;
+    tempfile::tempfile_in(dir)
+        .with_context(|| format!("{flag} {}: cannot write in the folder", dir.display()))?;
+    Ok(())
+}
+
+/// The folder `plan` writes to: `out` itself, or its first free numbered sibling when `out`
+/// holds a plan and `force` is off.
+pub fn plan_folder(out: &Path, force: bool) -> Result<PathBuf> {
+    if out.is_dir() && holds(out, "runs.jsonl") {
+        bail!(
+            "--out {}: holds a bench (runs.jsonl); plan into another folder",
+            out.display()
+        );
+    }
+    let chosen = if out.is_dir() && holds(out, "plan.json") && !force {
+        let next = (2..)
+            .map(|k| numbered(out, k))
+            .find(|p| !p.exists())
+            .expect("some numbered folder is free");
+        eprintln!(
+            "{} holds a plan already; writing this one to {} (--force replaces it)",
+            out.display(),
+            next.display()
+        );
+        next
+    } else {
+        out.to_path_buf()
+    };
+    ensure_writable(&chosen, "--out")?;
+    Ok(chosen)
+}
+
+/// Refuses a bench into a plan folder.
+pub fn bench_folder(out: &Path) -> Result<()> {
+    if out.is_dir() && holds(out, "plan.json") {
+        bail!(
+            "--out {}: holds a plan (plan.json); a bench needs its own folder",
+            out.display()
+        );
+    }
+    ensure_writable(out, "--out")
+}
+
+fn numbered(out: &Path, k: usize) -> PathBuf {
+    let name = out
+        .file_name()
+        .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+    out.with_file_name(format!("{name}-{k}"))
+}

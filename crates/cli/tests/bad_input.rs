@@ -1,0 +1,299 @@
+//! Bad input, as the reproducers of issue 13 kept in `tests/reproducers/`: every one ends
+//! with exit code 2 (or, for scenarios no plan can satisfy, a warning at load time), within
+//! seconds, with one message naming the file or flag, the field, what was expected and what
+//! was found. None may panic (exit 101), abort (134) or hang.
+
+#![allow(clippy::unwrap_used)] // tests fail loudly by design
+
+mod common;
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use common::swarmplan;
+
+fn reproducer(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/reproducers")
+        .join(name)
+}
+
+/// Runs `args`, checks the exit code and that stderr contains every one of `says`, each
+/// exactly once for the first; returns stderr.
+fn fails_with(args: &[&str], code: i32, says: &[&str]) -> String {
+    let started = Instant::now();
+    let out = swarmplan()
+        .args(args)
+        .timeout(Duration::from_secs(60))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(code), "{args:?}: {err}");
+    for s in says {
+        assert!(err.contains(s), "{args:?}: expected `{s}` in: {err}");
+    }
+    assert_eq!(
+        err.matches(says[0]).count(),
+        1,
+        "{args:?}: said more than once: {err}"
+    );
+    assert!(
+        started.elapsed() < Duration::from_secs(30),
+        "{args:?} took {:?}",
+        started.elapsed()
+    );
+    err
+}
+
+#[test]
+fn scenarios_beyond_what_the_model_can_hold_are_refused_with_the_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    let out = out.to_str().unwrap();
+    for (file, says) in [
+        (
+            "map-huge.toml",
+            &["map.x", "at most 1000000 m", "-1e300"][..],
+        ),
+        ("map-1e12.toml", &["map.x", "1000000000000"]),
+        (
+            "map-1e6.toml",
+            &["map.clearance_step", "at least 100", "got 5"],
+        ),
+        (
+            "map-beyond-terrain.toml",
+            &["reaches beyond the terrain", "x [0, 300]"],
+        ),
+        (
+            "clearance-step-tiny.toml",
+            &["map.clearance_step", "at least 0.036", "0.000000001"],
+        ),
+        (
+            "los-step-tiny.toml",
+            &["communication.line_of_sight_step", "at least"],
+        ),
+        (
+            "time-step-tiny.toml",
+            &["communication.time_step", "at least 0.01 s", "0.000000001"],
+        ),
+        (
+            "climb-95.toml",
+            &["uavs[0].max_climb_deg", "(0, 90]", "got 95"],
+        ),
+        (
+            "cell-larger-than-map.toml",
+            &["terrain.procedural.cell", "at most half", "got 500"],
+        ),
+    ] {
+        let path = reproducer(file);
+        let err = fails_with(
+            &["plan", "--scenario", path.to_str().unwrap(), "--out", out],
+            2,
+            says,
+        );
+        assert!(err.contains(file), "names the file: {err}");
+    }
+}
+
+#[test]
+fn scenarios_no_plan_can_satisfy_are_said_at_load_time() {
+    for (file, says) in [
+        ("start-in-threat.toml", "uavs[0].start: (120.0, 80.0)"),
+        ("goal-in-threat.toml", "goal.position: (270.0, 170.0)"),
+        (
+            "start-below-ground.toml",
+            "uavs[0].start: its height above ground is -60 m",
+        ),
+        (
+            "payload-above-max.toml",
+            "uavs[0].payload_kg: 5 kg is above",
+        ),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        let path = reproducer(file);
+        let out = swarmplan()
+            .args(["plan", "--scenario", path.to_str().unwrap()])
+            .args(["--evaluations", "40", "--no-figures", "--out"])
+            .arg(dir.path())
+            .timeout(Duration::from_secs(60))
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        let line = format!("warning: {}: {says}", path.display());
+        assert_eq!(err.matches(&line).count(), 1, "{file}: {err}");
+        assert!(err.contains("no plan can be feasible"), "{file}: {err}");
+        // Planning still runs and says the plan is infeasible.
+        assert!(out.status.success(), "{file}: {err}");
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(stdout.contains("INFEASIBLE"), "{file}: {stdout}");
+    }
+}
+
+#[test]
+fn plans_that_cannot_be_evaluated_name_the_uav_and_waypoint() {
+    for (file, says) in [
+        (
+            "plan-far-x.json",
+            &["uavs[0].waypoints[2]", "map box", "1000000000.0"][..],
+        ),
+        (
+            "plan-high-z.json",
+            &["uavs[0].waypoints:", "beyond the 3600 s the model covers"],
+        ),
+        (
+            "plan-string.json",
+            &["uavs[1].waypoints[2][0]", "expected f64"],
+        ),
+        ("plan-trailing.json", &["text after the plan object"]),
+        (
+            "plan-other-scenario.json",
+            &["made for scenario `paper-case1`", "--allow-other-terrain"],
+        ),
+    ] {
+        let path = reproducer(file);
+        let err = fails_with(
+            &[
+                "evaluate",
+                "--scenario",
+                "tiny",
+                "--plan",
+                path.to_str().unwrap(),
+            ],
+            2,
+            says,
+        );
+        assert!(err.contains(file), "names the file: {err}");
+    }
+}
+
+#[test]
+fn flags_out_of_range_are_refused_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    let out = out.to_str().unwrap();
+    fails_with(
+        &["plan", "--population", "100000000", "--out", out],
+        2,
+        &["--population", "[4, 100000]", "100000000"],
+    );
+    // The same range in a parameter file.
+    let params = dir.path().join("p.toml");
+    std::fs::write(&params, "[pso]\npopulation = 2\n").unwrap();
+    fails_with(
+        &[
+            "plan",
+            "--method",
+            "pso",
+            "--params",
+            params.to_str().unwrap(),
+            "--out",
+            out,
+        ],
+        2,
+        &["pso.population", "[4, 100000]", "got 2"],
+    );
+    fails_with(
+        &["plan", "--seed", "-1", "--out", out],
+        2,
+        &["--seed", "whole number", "-1"],
+    );
+    fails_with(
+        &[
+            "plan", "--export", "qgc-plan", "--origin", "90,0", "--out", out,
+        ],
+        2,
+        &["strictly between -90 and 90", "got 90"],
+    );
+    fails_with(
+        &[
+            "plan",
+            "--export",
+            "qgc-plan",
+            "--origin",
+            "10,0,-1e6",
+            "--out",
+            out,
+        ],
+        2,
+        &["altitude", "[-1000, 20000]", "-1000000"],
+    );
+}
+
+#[test]
+fn output_folders_are_checked_first_and_never_overwritten_silently() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("a-file");
+    std::fs::write(&file, "x").unwrap();
+    let started = Instant::now();
+    fails_with(
+        &["plan", "--out", file.to_str().unwrap()],
+        2,
+        &["--out", "is a file, expected a folder"],
+    );
+    // Refused before planning: far quicker than a run.
+    assert!(started.elapsed() < Duration::from_secs(5));
+
+    let out = dir.path().join("out");
+    let plan = |extra: &[&str]| {
+        swarmplan()
+            .args([
+                "plan",
+                "--scenario",
+                "tiny",
+                "--evaluations",
+                "40",
+                "--no-figures",
+            ])
+            .args(extra)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap()
+    };
+    assert!(plan(&[]).status.success());
+    let first = std::fs::read_to_string(out.join("plan.json")).unwrap();
+    let second = plan(&["--seed", "9"]);
+    assert!(second.status.success());
+    let err = String::from_utf8_lossy(&second.stderr);
+    assert!(
+        err.contains("holds a plan already") && err.contains("out-2"),
+        "{err}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(out.join("plan.json")).unwrap(),
+        first
+    );
+    assert!(dir.path().join("out-2/plan.json").exists());
+    // --force replaces it.
+    assert!(plan(&["--seed", "9", "--force"]).status.success());
+    assert_ne!(
+        std::fs::read_to_string(out.join("plan.json")).unwrap(),
+        first
+    );
+    // No temporary file is left behind.
+    let leftovers: Vec<_> = std::fs::read_dir(&out)
+        .unwrap()
+        .flatten()
+        .filter(|e| e.file_name().to_string_lossy().contains("partial"))
+        .collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+
+    // Plan and bench folders are not mixed.
+    fails_with(
+        &[
+            "bench",
+            "--scenarios",
+            "tiny",
+            "--methods",
+            "spso",
+            "--runs",
+            "1",
+            "--iterations",
+            "2",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        2,
+        &["holds a plan (plan.json)"],
+    );
+}

@@ -1,0 +1,116 @@
+//! Scenarios that no plan can make feasible, found before any search.
+//!
+//! A start inside a threat's hard zone, a goal under a threat, a start below ground or a
+//! payload above the airframe's maximum are valid numbers, so validation accepts them; but
+//! every plan then violates a hard constraint, and a search would spend its whole budget to
+//! report INFEASIBLE. The CLI prints these as warnings when it loads a scenario (planning
+//! still runs: the user may want the least-bad plan, or be testing the model).
+
+use glam::DVec2;
+
+use super::threat::Threat;
+use super::World;
+
+/// One reason no plan can be feasible: the field at fault and why.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Unreachable {
+    pub field: String,
+    pub reason: String,
+}
+
+impl std::fmt::Display for Unreachable {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{}: {}; no plan can be feasible",
+            self.field, self.reason
+        )
+    }
+}
+
+/// Every cause found in `world` (empty when none is known).
+#[must_use]
+pub fn unreachable_feasibility(world: &World) -> Vec<Unreachable> {
+    let spec = &world.spec;
+    let mut out = Vec::new();
+    let goal = DVec2::new(world.goal.x, world.goal.y);
+    for (k, u) in spec.uavs.iter().enumerate() {
+        let start = DVec2::new(u.start[0], u.start[1]);
+        for (j, t) in spec.threats.iter().enumerate() {
+            let centre = DVec2::new(t.x, t.y);
+            let hard = t.r + u.size;
+            let d = start.distance(centre);
+            if d < hard {
+                out.push(Unreachable {
+                    field: format!("uavs[{k}].start"),
+                    reason: in_threat(start, d, j, t, u.size),
+                });
+            }
+        }
+        if u.start[2] < 0.0 {
+            out.push(Unreachable {
+                field: format!("uavs[{k}].start"),
+                reason: format!(
+                    "its height above ground is {} m, below the terrain",
+                    u.start[2]
+                ),
+            });
+        }
+        let cruise = spec.timing.policy == super::spec::TimingPolicy::Cruise;
+        if cruise && !(u.speed[0]..=u.speed[1]).contains(&u.cruise_speed) {
+            out.push(Unreachable {
+                field: format!("uavs[{k}].cruise_speed"),
+                reason: format!(
+                    "{} m/s is outside uavs[{k}].speed [{}, {}] m/s and the `cruise` timing policy flies every segment at it",
+                    u.cruise_speed, u.speed[0], u.speed[1]
+                ),
+            });
+        }
+        if u.payload_kg > u.max_payload_kg {
+            out.push(Unreachable {
+                field: format!("uavs[{k}].payload_kg"),
+                reason: format!(
+                    "{} kg is above max_payload_kg {} kg",
+                    u.payload_kg, u.max_payload_kg
+                ),
+            });
+        }
+    }
+    // The smallest UAV decides whether the goal itself is reachable.
+    let size = spec
+        .uavs
+        .iter()
+        .map(|u| u.size)
+        .fold(f64::INFINITY, f64::min);
+    for (j, t) in spec.threats.iter().enumerate() {
+        let d = goal.distance(DVec2::new(t.x, t.y));
+        if d < t.r + size {
+            out.push(Unreachable {
+                field: "goal.position".into(),
+                reason: in_threat(goal, d, j, t, size),
+            });
+        }
+    }
+    if world.goal.z < 0.0 {
+        out.push(Unreachable {
+            field: "goal.position".into(),
+            reason: format!(
+                "its height above ground is {} m, below the terrain",
+                world.goal.z
+            ),
+        });
+    }
+    out
+}
+
+fn in_threat(p: DVec2, d: f64, j: usize, t: &Threat, size: f64) -> String {
+    format!(
+        "({:.1}, {:.1}) is {d:.1} m from the axis of threats[{j}] at ({}, {}), inside its hard zone of {:.1} m (radius {} + UAV size {size})",
+        p.x,
+        p.y,
+        t.x,
+        t.y,
+        t.r + size,
+        t.r
+    )
+}

@@ -1,0 +1,51 @@
+//! Files that appear whole or not at all.
+//!
+//! A plan folder is read by other tools (QGroundControl, the report, `evaluate`), so a
+//! half-written `plan.json` after a full disk or a kill is worse than none: it parses as
+//! garbage or, worse, as a shorter plan. Each output is written to a temporary file in the
+//! same folder and renamed over the target once complete and synced; a rename within one
+//! file system is atomic on POSIX, so a reader sees the old file or the new one.
+
+use std::io::Write as _;
+use std::path::Path;
+
+/// Writes `contents` to `path` atomically (temporary file in the same folder, sync,
+/// rename). On error the target is untouched and the temporary file is removed.
+///
+/// # Errors
+/// Creating, writing, syncing or renaming the temporary file failed.
+pub fn write_atomic(path: &Path, contents: &[u8]) -> std::io::Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let name = path
+        .file_name()
+        .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+    let mut tmp = tempfile::Builder::new()
+        .prefix(&format!(".{name}."))
+        .suffix(".partial")
+        .tempfile_in(dir)?;
+    tmp.write_all(contents)?;
+    tmp.as_file().sync_all()?;
+    tmp.persist(path).map_err(|e| e.error)?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn replaces_the_file_and_leaves_no_temporary() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("plan.json");
+        write_atomic(&p, b"old").unwrap();
+        write_atomic(&p, b"new").unwrap();
+        assert_eq!(std::fs::read(&p).unwrap(), b"new");
+        let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+        assert_eq!(names.len(), 1);
+        // A folder that does not exist: an error, nothing written.
+        assert!(write_atomic(&dir.path().join("no/such/x"), b"x").is_err());
+    }
+}
