@@ -297,3 +297,107 @@ fn output_folders_are_checked_first_and_never_overwritten_silently() {
         &["holds a plan (plan.json)"],
     );
 }
+
+#[test]
+fn terrain_flags_are_named_as_flags_and_filled_cells_are_said() {
+    let dir = tempfile::tempdir().unwrap();
+    let garbage = dir.path().join("g.asc");
+    std::fs::write(&garbage, "garbage\n").unwrap();
+    let err = fails_with(
+        &[
+            "plan",
+            "--scenario",
+            "tiny",
+            "--terrain",
+            garbage.to_str().unwrap(),
+            "--out",
+            dir.path().join("o").to_str().unwrap(),
+        ],
+        2,
+        &["--terrain ", "g.asc: line 1", "garbage"],
+    );
+    assert!(!err.contains("builtin:tiny"), "{err}");
+
+    // A grid covering tiny's map (SPSO pixel frame: x, y from 1) with two nodata cells.
+    let (nx, ny) = (302, 202);
+    let mut text = format!(
+        "ncols {nx}\nnrows {ny}\nxllcorner 0\nyllcorner 0\ncellsize 1\nNODATA_value -9999\n"
+    );
+    for j in 0..ny {
+        let row: Vec<String> = (0..nx)
+            .map(|i| {
+                if (i, j) == (5, 5) || (i, j) == (100, 50) {
+                    "-9999".to_string()
+                } else {
+                    format!("{}", 20 + (i + j) % 7)
+                }
+            })
+            .collect();
+        text += &row.join(" ");
+        text.push('\n');
+    }
+    let dem = dir.path().join("holes.asc");
+    std::fs::write(&dem, text).unwrap();
+    let out = swarmplan()
+        .args([
+            "plan",
+            "--scenario",
+            "tiny",
+            "--evaluations",
+            "30",
+            "--no-figures",
+        ])
+        .arg("--terrain")
+        .arg(&dem)
+        .arg("--out")
+        .arg(dir.path().join("o2"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert_eq!(
+        err.matches("holes.asc: 2 of 61004 cells were nodata")
+            .count(),
+        1,
+        "{err}"
+    );
+}
+
+#[test]
+fn parameters_take_the_papers_symbols() {
+    let dir = tempfile::tempdir().unwrap();
+    let params = dir.path().join("p.toml");
+    std::fs::write(
+        &params,
+        "[pso]\nw = 0.7298\nc1 = 1.49618\nc2 = 1.49618\nwdamp = 1.0\n",
+    )
+    .unwrap();
+    let out = swarmplan()
+        .args([
+            "plan",
+            "--scenario",
+            "tiny",
+            "--method",
+            "pso",
+            "--iterations",
+            "3",
+        ])
+        .args(["--no-figures", "--params"])
+        .arg(&params)
+        .arg("--out")
+        .arg(dir.path().join("o"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let run: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("o/run.json")).unwrap())
+            .unwrap();
+    let pso = &run["params"]["pso"];
+    assert_eq!(pso["inertia"], 0.7298, "{run}");
+    assert_eq!(pso["cognitive"], 1.49618);
+    assert_eq!(pso["inertia_damping"], 1.0);
+}

@@ -474,3 +474,35 @@ fn a_bench_over_instances_ranks_the_methods_across_them() {
     assert!(out.join("performance_profile.png").exists());
     assert!(out.join("performance_profile.svg").exists());
 }
+
+#[test]
+fn resume_alone_reads_the_experiment_from_the_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("b");
+    bench(&out, &["--seed", "6"]).success();
+    let whole = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    // Keep the first 5 records, as an interrupted run would.
+    let runs = out.join("runs.jsonl");
+    let kept: String = std::fs::read_to_string(&runs)
+        .unwrap()
+        .lines()
+        .take(5)
+        .map(|l| format!("{l}\n"))
+        .collect();
+    std::fs::write(&runs, kept).unwrap();
+    std::fs::remove_file(out.join("summary.json")).unwrap();
+    Command::cargo_bin("swarmplan")
+        .unwrap()
+        .args(["bench", "--resume", "--out"])
+        .arg(&out)
+        .assert()
+        .success()
+        .stderr(predicate::str::contains(
+            "resuming the experiment recorded in",
+        ));
+    assert_eq!(
+        std::fs::read_to_string(out.join("summary.json")).unwrap(),
+        whole
+    );
+    assert_eq!(lines(&runs).len(), 18);
+}

@@ -52,6 +52,9 @@ pub enum ScenarioError {
     Procedural { origin: String, message: String },
     #[error("{origin}: terrain: {source}")]
     Terrain { origin: String, source: DemError },
+    /// The DEM given with `--terrain` (not the scenario's own source) could not be read.
+    #[error("--terrain {source}")]
+    TerrainOverride { source: DemError },
     #[error("scenario `{name}`: {message}")]
     Generated { name: String, message: String },
 }
@@ -152,6 +155,16 @@ pub fn build_world(
     loaded: &LoadedSpec,
     terrain_override: Option<&Path>,
 ) -> Result<World, ScenarioError> {
+    build_world_noted(loaded, terrain_override).map(|(w, _)| w)
+}
+
+/// [`build_world`], with notes a user should see about how the terrain was read (cells
+/// that were nodata and took a neighbour's height), each naming the file.
+pub fn build_world_noted(
+    loaded: &LoadedSpec,
+    terrain_override: Option<&Path>,
+) -> Result<(World, Vec<String>), ScenarioError> {
+    let mut notes = Vec::new();
     let mut spec = loaded.spec.clone();
     let t = &spec.terrain;
     let source: Option<PathBuf> = match terrain_override {
@@ -173,20 +186,38 @@ pub fn build_world(
                 sampling: t.sampling,
             };
             read_terrain(path, &opts)
-                .map_err(|source| ScenarioError::Terrain {
-                    origin: loaded.origin.clone(),
-                    source,
+                .map_err(|source| {
+                    if terrain_override.is_some() {
+                        ScenarioError::TerrainOverride { source }
+                    } else {
+                        ScenarioError::Terrain {
+                            origin: loaded.origin.clone(),
+                            source,
+                        }
+                    }
+                })
+                .map(|dem| {
+                    if dem.nodata_filled > 0 {
+                        let (nx, ny) = dem.terrain.size();
+                        notes.push(format!(
+                            "{}: {} of {} cells were nodata (the nodata value, NaN or |h| > 1e30) and took the height of their nearest valid cell",
+                            path.display(),
+                            dem.nodata_filled,
+                            nx * ny
+                        ));
+                    }
+                    dem.terrain
                 })?
-                .terrain
         }
     };
     if let Some(p) = source {
         spec.terrain.source = p.display().to_string();
     }
-    World::new(spec, terrain).map_err(|source| ScenarioError::Invalid {
+    let world = World::new(spec, terrain).map_err(|source| ScenarioError::Invalid {
         origin: loaded.origin.clone(),
         source,
-    })
+    })?;
+    Ok((world, notes))
 }
 
 #[cfg(test)]

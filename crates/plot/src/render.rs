@@ -8,8 +8,10 @@
 
 use std::path::{Path, PathBuf};
 
+use image::ImageEncoder as _;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use swarmplan_io::atomic::write_atomic;
 use thiserror::Error;
 
 use crate::style;
@@ -116,6 +118,11 @@ pub enum PlotError {
     },
     #[error("{}: cannot draw: {message}", .path.display())]
     Draw { path: PathBuf, message: String },
+    #[error("{}: cannot write: {source}", .path.display())]
+    Write {
+        path: PathBuf,
+        source: std::io::Error,
+    },
     #[error("{}: nothing to draw: {what}", .path.display())]
     NoData { path: PathBuf, what: String },
     #[error(
@@ -168,60 +175,42 @@ pub(crate) fn render(figure: &impl Figure, target: &Target) -> Result<Written, P
             message: e,
         }
     };
-    // Drawn into temporary files beside the targets and renamed over them once complete,
-    // so a full disk or a kill never leaves a truncated figure.
-    let png_tmp = partial(&png)?;
-    let svg_tmp = partial(&svg)?;
+    // Drawn in memory and written atomically, so a full disk or a kill never leaves a
+    // truncated figure, and a write error is an I/O error naming the file.
+    let (w, h) = (size.0 as usize, size.1 as usize);
+    let mut rgb = vec![0_u8; w * h * 3];
     {
-        let root = BitMapBackend::new(png_tmp.path(), size).into_drawing_area();
+        let root = BitMapBackend::with_buffer(&mut rgb, size).into_drawing_area();
         draw_on(figure, &root).map_err(draw_err(&png))?;
     }
+    let mut png_bytes = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut png_bytes)
+        .write_image(&rgb, size.0, size.1, image::ColorType::Rgb8)
+        .map_err(|e| draw_err(&png)(e.to_string()))?;
+    let mut svg_text = String::new();
     {
-        let root = SVGBackend::new(svg_tmp.path(), size).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg_text, size).into_drawing_area();
         draw_on(figure, &root).map_err(draw_err(&svg))?;
     }
-    fix_embedded_images(svg_tmp.path()).map_err(|e| draw_err(&svg)(e.to_string()))?;
-    png_tmp
-        .persist(&png)
-        .map_err(|e| draw_err(&png)(e.error.to_string()))?;
-    svg_tmp
-        .persist(&svg)
-        .map_err(|e| draw_err(&svg)(e.error.to_string()))?;
+    let svg_text = fix_embedded_images(svg_text);
+    for (path, bytes) in [(&png, png_bytes.as_slice()), (&svg, svg_text.as_bytes())] {
+        write_atomic(path, bytes).map_err(|source| PlotError::Write {
+            path: path.clone(),
+            source,
+        })?;
+    }
     Ok(Written { png, svg })
-}
-
-/// An empty temporary file beside `target`, with its extension (the bitmap encoder picks
-/// the format from it); removed on drop unless persisted.
-fn partial(target: &Path) -> Result<tempfile::NamedTempFile, PlotError> {
-    let dir = match target.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let name = target
-        .file_stem()
-        .map_or_else(|| "figure".into(), |n| n.to_string_lossy().into_owned());
-    let ext = target
-        .extension()
-        .map_or_else(String::new, |e| format!(".{}", e.to_string_lossy()));
-    tempfile::Builder::new()
-        .prefix(&format!(".{name}.partial."))
-        .suffix(&ext)
-        .tempfile_in(dir)
-        .map_err(|e| PlotError::Draw {
-            path: target.to_path_buf(),
-            message: format!("cannot create a temporary file: {e}"),
-        })
 }
 
 /// plotters-svg 0.3.7 embeds bitmaps as `data:png;base64,...`, which is not a MIME type;
 /// strict viewers refuse it. Rewrites those to `data:image/png`.
-fn fix_embedded_images(svg: &Path) -> std::io::Result<()> {
+fn fix_embedded_images(text: String) -> String {
     const BAD: &str = "href=\"data:png;base64,";
-    let text = std::fs::read_to_string(svg)?;
     if text.contains(BAD) {
-        std::fs::write(svg, text.replace(BAD, "href=\"data:image/png;base64,"))?;
+        text.replace(BAD, "href=\"data:image/png;base64,")
+    } else {
+        text
     }
-    Ok(())
 }
 
 fn draw_on<DB: DrawingBackend>(

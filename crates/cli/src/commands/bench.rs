@@ -81,7 +81,40 @@ pub struct AggregateArgs {
     pub out: PathBuf,
 }
 
+/// Whether any flag that defines the matrix (not how or where it runs) was given.
+fn defines_matrix(args: &BenchArgs) -> bool {
+    let st = &args.settings;
+    args.experiment.is_some()
+        || args.scenarios.is_some()
+        || args.suite.is_some()
+        || args.methods.is_some()
+        || args.runs.is_some()
+        || args.seed.is_some()
+        || args.budget.is_some()
+        || args.profile.is_some()
+        || args.terrain.is_some()
+        || st.iterations.is_some()
+        || st.evaluations.is_some()
+        || st.params.is_some()
+        || st.population.is_some()
+}
+
 fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
+    // `bench --resume --out DIR` alone continues the experiment the folder records; with
+    // matrix flags, they must describe that same experiment (the runner compares).
+    let stored = args.out.join("experiment.json");
+    if args.resume && !defines_matrix(args) && stored.is_file() {
+        let text = std::fs::read_to_string(&stored)
+            .with_context(|| format!("{}: cannot read", stored.display()))?;
+        let spec: ExperimentSpec = serde_json::from_str(&text)
+            .map_err(|e| anyhow::anyhow!("{}: {e}", stored.display()))?;
+        eprintln!(
+            "bench: resuming the experiment recorded in {}",
+            stored.display()
+        );
+        spec.validate()?;
+        return Ok(spec);
+    }
     let mut spec = match &args.experiment {
         Some(p) => {
             let text = std::fs::read_to_string(p)

@@ -13,7 +13,7 @@ pub mod scenario_new;
 use anyhow::Result;
 use swarmplan_core::world::unreachable::unreachable_feasibility;
 use swarmplan_core::world::World;
-use swarmplan_io::scenario::{build_world, load_spec};
+use swarmplan_io::scenario::{build_world_noted, load_spec};
 
 use crate::ScenarioArgs;
 
@@ -24,7 +24,10 @@ pub fn load_world(args: &ScenarioArgs) -> Result<World> {
     if let Some(p) = args.profile {
         loaded.spec.planning.profile = p;
     }
-    let world = build_world(&loaded, args.terrain.as_deref())?;
+    let (world, notes) = build_world_noted(&loaded, args.terrain.as_deref())?;
+    for n in notes {
+        eprintln!("note: {n}");
+    }
     warn_unreachable(&loaded.origin, &world);
     Ok(world)
 }

@@ -39,22 +39,27 @@ use super::{Evaluator, Optimizer, Progress};
 use crate::problem::{Bound, Evaluation};
 use crate::rng::Rng;
 
-/// Parameters of PSO / APSO / SPSO (defaults: the paper's and SPSO's settings).
+/// Parameters of PSO / APSO / SPSO (defaults: the paper's and SPSO's settings). In TOML the
+/// paper's symbols are accepted too: `w`, `wdamp`, `c1`, `c2`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct PsoParams {
     /// Swarm size nPop (50).
     pub population: usize,
     /// Initial inertia weight w (1.0).
+    #[serde(alias = "w")]
     pub inertia: f64,
     /// Factor applied to w per nominal iteration, wdamp (0.98; 1 keeps w constant).
+    #[serde(alias = "wdamp")]
     pub inertia_damping: f64,
     /// Nominal iterations K over which the damping schedule is defined (200, SPSO's run):
     /// w reaches w0 * wdamp^K at the end of the budget, whatever its size.
     pub schedule_iterations: u64,
     /// Cognitive coefficient c1 (1.5).
+    #[serde(alias = "c1")]
     pub cognitive: f64,
     /// Social coefficient c2 (1.5).
+    #[serde(alias = "c2")]
     pub social: f64,
     /// Velocity limit as a fraction of each bound's width, alpha (0.5); `inf` disables it.
     pub velocity_clamp: f64,
