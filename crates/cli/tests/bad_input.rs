@@ -401,3 +401,38 @@ fn parameters_take_the_papers_symbols() {
     assert_eq!(pso["cognitive"], 1.49618);
     assert_eq!(pso["inertia_damping"], 1.0);
 }
+
+#[test]
+fn more_threads_than_runs_is_no_hang_and_absurd_counts_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let bench = |threads: &str, out: &str| {
+        swarmplan()
+            .args([
+                "bench",
+                "--scenarios",
+                "tiny",
+                "--methods",
+                "spso",
+                "--runs",
+                "2",
+            ])
+            .args([
+                "--iterations",
+                "2",
+                "--population",
+                "4",
+                "--threads",
+                threads,
+            ])
+            .arg("--out")
+            .arg(dir.path().join(out))
+            .timeout(Duration::from_secs(60))
+            .output()
+            .unwrap()
+    };
+    assert!(bench("1000", "a").status.success());
+    let out = bench("100000", "b");
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("--threads") && err.contains("100000"), "{err}");
+}

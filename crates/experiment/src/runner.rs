@@ -88,8 +88,14 @@ pub fn run_experiment(
     let skipped = mine.len() - pending.len();
     start(pending.len());
 
+    // More workers than runs would only idle (and cost a stack each).
+    let threads = if opts.threads == 0 {
+        0
+    } else {
+        opts.threads.min(pending.len().max(1))
+    };
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(opts.threads)
+        .num_threads(threads)
         .build()
         .map_err(|e| RunnerError::Pool {
             threads: opts.threads,

@@ -215,8 +215,16 @@ impl LogLines {
     }
 }
 
+/// Most worker threads `bench` starts (each holds a stack and a world).
+const MAX_THREADS: usize = 4096;
+
 pub fn run_bench(args: &BenchArgs) -> Result<()> {
     let spec = experiment(args)?;
+    anyhow::ensure!(
+        args.threads <= MAX_THREADS,
+        "--threads: expected 0 (one per core) or at most {MAX_THREADS}, got {}",
+        args.threads
+    );
     super::out_folder::bench_folder(&args.out)?;
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?;
     let opts = RunnerOptions {

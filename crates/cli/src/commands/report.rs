@@ -54,7 +54,8 @@ pub fn run(args: &ReportArgs) -> Result<()> {
             dir.display()
         );
     };
-    std::fs::write(&out, html).with_context(|| format!("{}: cannot write", out.display()))?;
+    swarmplan_io::atomic::write_atomic(&out, html.as_bytes())
+        .with_context(|| format!("{}: cannot write", out.display()))?;
     println!("wrote {}", out.display());
     Ok(())
 }

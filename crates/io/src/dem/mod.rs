@@ -240,6 +240,16 @@ pub fn read_terrain(path: &Path, opts: &DemOptions) -> Result<LoadedDem, DemErro
         path: path.into(),
         source,
     })?;
+    read_terrain_bytes(path, bytes, opts)
+}
+
+/// [`read_terrain`] on the content of a file already in memory; `path` names it in errors
+/// and its extension helps recognise the format (as for a file).
+pub fn read_terrain_bytes(
+    path: &Path,
+    bytes: Vec<u8>,
+    opts: &DemOptions,
+) -> Result<LoadedDem, DemError> {
     let (bytes, named) = if bytes.starts_with(&GZIP_MAGIC) {
         // `x.asc.gz` is sniffed as `x.asc`.
         (gunzip(path, &bytes)?, path.with_extension(""))

@@ -338,9 +338,11 @@ pub fn write_mission(
     let mut written = Vec::with_capacity(files.len());
     for (name, text) in files {
         let path = out_dir.join(name);
-        std::fs::write(&path, text).map_err(|source| ExportError::Write {
-            path: path.clone(),
-            source,
+        crate::atomic::write_atomic(&path, text.as_bytes()).map_err(|source| {
+            ExportError::Write {
+                path: path.clone(),
+                source,
+            }
         })?;
         written.push(path);
     }
