@@ -436,3 +436,25 @@ fn more_threads_than_runs_is_no_hang_and_absurd_counts_are_refused() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("--threads") && err.contains("100000"), "{err}");
 }
+
+#[test]
+fn a_tiff_the_decoder_would_panic_on_is_a_corrupt_file() {
+    // Found by the `geotiff` fuzz target: a SampleFormat tag with no value made the `tiff`
+    // crate index an empty list.
+    let path = reproducer("tiff-empty-sampleformat.tif");
+    let dir = tempfile::tempdir().unwrap();
+    let err = fails_with(
+        &[
+            "plan",
+            "--scenario",
+            "tiny",
+            "--terrain",
+            path.to_str().unwrap(),
+            "--out",
+            dir.path().join("o").to_str().unwrap(),
+        ],
+        2,
+        &["tag SampleFormat has no value", "tiff-empty-sampleformat.tif"],
+    );
+    assert!(!err.contains("panicked"), "{err}");
+}

@@ -51,6 +51,68 @@ const PROJ_LINEAR_UNITS: u16 = 3076;
 const USER_DEFINED: u16 = 32767;
 
 pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<RawRaster, DemError> {
+    if let Some(tag) = empty_indexed_tag(bytes) {
+        return Err(DemError::Corrupt {
+            path: path.into(),
+            format: FORMAT,
+            detail: format!("tag {tag} has no value"),
+        });
+    }
+    // Last line of defence: a panic inside the TIFF decoder on a crafted file is a corrupt
+    // file, not a crash of the planner (the known one is screened above).
+    std::panic::catch_unwind(|| read_checked(path, bytes)).unwrap_or_else(|_| {
+        Err(DemError::Corrupt {
+            path: path.into(),
+            format: FORMAT,
+            detail: "the TIFF decoder failed on this file".into(),
+        })
+    })
+}
+
+/// Tags the `tiff` 0.10 decoder indexes at `[0]` without checking for an empty list: a
+/// count of 0 panics there (found by the `geotiff` fuzz target).
+const INDEXED_TAGS: [(u16, &str); 1] = [(339, "SampleFormat")];
+
+/// The name of the first tag of [`INDEXED_TAGS`] whose count is 0 in the first IFD of a
+/// classic or BigTIFF file; `None` when there is none or the header cannot be read (the
+/// decoder then reports the problem itself).
+fn empty_indexed_tag(b: &[u8]) -> Option<&'static str> {
+    let little = match b.get(..2)? {
+        b"II" => true,
+        b"MM" => false,
+        _ => return None,
+    };
+    let int = |at: usize, len: usize| -> Option<u64> {
+        let raw = b.get(at..at.checked_add(len)?)?;
+        let mut v = 0_u64;
+        for k in 0..len {
+            let byte = u64::from(raw[if little { len - 1 - k } else { k }]);
+            v = (v << 8) | byte;
+        }
+        Some(v)
+    };
+    let big = int(2, 2)? == 43;
+    let (ifd, count_len, entry_len, n_len) = if big {
+        (int(8, 8)?, 8, 20, 8)
+    } else {
+        (int(4, 4)?, 2, 12, 4)
+    };
+    let ifd = usize::try_from(ifd).ok()?;
+    let entries = usize::try_from(int(ifd, count_len)?).ok()?;
+    for e in 0..entries.min(4096) {
+        let at = ifd + count_len + e * entry_len;
+        let tag = u16::try_from(int(at, 2)?).ok()?;
+        let count = int(at + 4, n_len)?;
+        if let Some((_, name)) = INDEXED_TAGS.iter().find(|(t, _)| *t == tag) {
+            if count == 0 {
+                return Some(name);
+            }
+        }
+    }
+    None
+}
+
+fn read_checked(path: &Path, bytes: &[u8]) -> Result<RawRaster, DemError> {
     let err = |e: TiffError| tiff_error(path, e);
     let mut limits = Limits::default();
     limits.decoding_buffer_size = bytes
