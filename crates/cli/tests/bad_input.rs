@@ -454,7 +454,10 @@ fn a_tiff_the_decoder_would_panic_on_is_a_corrupt_file() {
             dir.path().join("o").to_str().unwrap(),
         ],
         2,
-        &["tag SampleFormat has no value", "tiff-empty-sampleformat.tif"],
+        &[
+            "tag SampleFormat has no value",
+            "tiff-empty-sampleformat.tif",
+        ],
     );
     assert!(!err.contains("panicked"), "{err}");
 }
