@@ -43,6 +43,38 @@ pub(crate) fn draw_mesh<DB: DrawingBackend>(
         .draw()
 }
 
+/// A 2-D line chart on `area` in the house layout (margins, label areas) with axes `x`, `y`;
+/// the caller draws the mesh and series.
+pub(crate) fn line_chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, plotters::coord::Shift>,
+    s: Scale,
+    x: Axis,
+    y: Axis,
+) -> DrawResult<ChartContext<'a, DB, Cartesian2d<Axis, Axis>>, DB> {
+    ChartBuilder::on(area)
+        .margin(s.px(20.0))
+        .margin_right(s.px(40.0))
+        .x_label_area_size(s.px(65.0))
+        .y_label_area_size(s.px(100.0))
+        .build_cartesian_2d(x, y)
+}
+
+/// Draws the series key (legend box) of `chart` at `position`, in the house style.
+pub(crate) fn draw_series_key<'a, DB: DrawingBackend + 'a>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<Axis, Axis>>,
+    s: Scale,
+    position: SeriesLabelPosition,
+) -> DrawResult<(), DB> {
+    chart
+        .configure_series_labels()
+        .position(position)
+        .margin(s.px(15.0))
+        .label_font(s.legend())
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK.mix(0.5))
+        .draw()
+}
+
 #[derive(Debug, Clone, PartialEq)]
 enum Kind {
     Linear,

@@ -175,12 +175,8 @@ impl Figure for ConvergenceBench<'_> {
                 "iteration (0 = after initialisation)",
             ),
         };
-        let mut chart = ChartBuilder::on(&body)
-            .margin(s.px(20.0))
-            .margin_right(s.px(40.0))
-            .x_label_area_size(s.px(65.0))
-            .y_label_area_size(s.px(100.0))
-            .build_cartesian_2d(Axis::linear(0.0, x_max), self.y.clone())?;
+        let mut chart =
+            crate::axis::line_chart(&body, s, Axis::linear(0.0, x_max), self.y.clone())?;
         draw_mesh(
             &mut chart,
             s,
@@ -236,14 +232,7 @@ impl Figure for ConvergenceBench<'_> {
                 }
             }
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .margin(s.px(15.0))
-            .label_font(s.legend())
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK.mix(0.5))
-            .draw()
+        crate::axis::draw_series_key(&mut chart, s, SeriesLabelPosition::UpperRight)
     }
 }
 

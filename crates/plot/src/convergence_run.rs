@@ -86,12 +86,12 @@ impl Figure for ConvergenceRun<'_> {
             .chain([self.trace.len()])
             .max()
             .unwrap_or(0);
-        let mut chart = ChartBuilder::on(&body)
-            .margin(s.px(20.0))
-            .margin_right(s.px(40.0))
-            .x_label_area_size(s.px(65.0))
-            .y_label_area_size(s.px(100.0))
-            .build_cartesian_2d(Axis::linear(0.0, (len.max(2) - 1) as f64), self.y.clone())?;
+        let mut chart = crate::axis::line_chart(
+            &body,
+            s,
+            Axis::linear(0.0, (len.max(2) - 1) as f64),
+            self.y.clone(),
+        )?;
         draw_mesh(
             &mut chart,
             s,
@@ -127,13 +127,6 @@ impl Figure for ConvergenceRun<'_> {
                 }
             }
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .margin(s.px(15.0))
-            .label_font(s.legend())
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK.mix(0.5))
-            .draw()
+        crate::axis::draw_series_key(&mut chart, s, SeriesLabelPosition::UpperRight)
     }
 }

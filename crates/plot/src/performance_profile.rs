@@ -133,12 +133,7 @@ impl Figure for Profile {
         let n = self.curves.first().map_or(0, |c| c.ratios.len());
         let title = format!("Performance profile over {n} instances (median cost per UAV)");
         let body = root.titled(&title, s.title())?;
-        let mut chart = ChartBuilder::on(&body)
-            .margin(s.px(20.0))
-            .margin_right(s.px(40.0))
-            .x_label_area_size(s.px(65.0))
-            .y_label_area_size(s.px(100.0))
-            .build_cartesian_2d(self.x.clone(), Axis::linear(0.0, 1.02))?;
+        let mut chart = crate::axis::line_chart(&body, s, self.x.clone(), Axis::linear(0.0, 1.02))?;
         let x_desc = if self.x.is_log() {
             "tau: median cost / best median on the instance (log scale)"
         } else {
@@ -165,14 +160,7 @@ impl Figure for Profile {
                     PathElement::new(vec![(x, y), (x + 24, y)], colour.stroke_width(3))
                 });
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
-            .margin(s.px(15.0))
-            .label_font(s.legend())
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK.mix(0.5))
-            .draw()
+        crate::axis::draw_series_key(&mut chart, s, SeriesLabelPosition::LowerRight)
     }
 }
 
