@@ -461,3 +461,30 @@ fn a_tiff_the_decoder_would_panic_on_is_a_corrupt_file() {
     );
     assert!(!err.contains("panicked"), "{err}");
 }
+
+#[test]
+fn bench_says_which_scenarios_no_plan_can_satisfy_before_running() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = reproducer("start-in-threat.toml");
+    let scenarios = format!("{},tiny", path.display());
+    let out = swarmplan()
+        .args([
+            "bench",
+            "--scenarios",
+            &scenarios,
+            "--methods",
+            "spso",
+            "--runs",
+            "1",
+        ])
+        .args(["--iterations", "2", "--population", "4", "--out"])
+        .arg(dir.path().join("b"))
+        .timeout(Duration::from_secs(60))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    let line = format!("warning: {}: uavs[0].start:", path.display());
+    assert_eq!(err.matches(&line).count(), 1, "{err}");
+    assert_eq!(err.matches("no plan can be feasible").count(), 1, "{err}");
+}

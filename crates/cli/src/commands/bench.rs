@@ -226,6 +226,11 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
         args.threads
     );
     super::out_folder::bench_folder(&args.out)?;
+    // Scenarios no plan can satisfy are said once, before the runs start.
+    for name in &spec.scenarios {
+        let loaded = swarmplan_io::scenario::load_spec(name)?;
+        super::warn_unreachable(&loaded.origin, &loaded.spec);
+    }
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?;
     let opts = RunnerOptions {
         threads: args.threads,

@@ -11,6 +11,7 @@ pub mod scenario_generate;
 pub mod scenario_new;
 
 use anyhow::Result;
+use swarmplan_core::world::spec::ScenarioSpec;
 use swarmplan_core::world::unreachable::unreachable_feasibility;
 use swarmplan_core::world::World;
 use swarmplan_io::scenario::{build_world_noted, load_spec};
@@ -28,13 +29,13 @@ pub fn load_world(args: &ScenarioArgs) -> Result<World> {
     for n in notes {
         eprintln!("note: {n}");
     }
-    warn_unreachable(&loaded.origin, &world);
+    warn_unreachable(&loaded.origin, &world.spec);
     Ok(world)
 }
 
 /// Prints `warning: ORIGIN: FIELD: WHY; no plan can be feasible` for each cause found.
-pub fn warn_unreachable(origin: &str, world: &World) {
-    for u in unreachable_feasibility(world) {
+pub fn warn_unreachable(origin: &str, spec: &ScenarioSpec) {
+    for u in unreachable_feasibility(spec) {
         eprintln!("warning: {origin}: {u}");
     }
 }

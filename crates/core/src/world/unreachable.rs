@@ -8,8 +8,8 @@
 
 use glam::DVec2;
 
+use super::spec::ScenarioSpec;
 use super::threat::Threat;
-use super::World;
 
 /// One reason no plan can be feasible: the field at fault and why.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -28,12 +28,13 @@ impl std::fmt::Display for Unreachable {
     }
 }
 
-/// Every cause found in `world` (empty when none is known).
+/// Every cause found in `spec` (empty when none is known). Needs no terrain, so a bench can
+/// check its scenarios before building any world.
 #[must_use]
-pub fn unreachable_feasibility(world: &World) -> Vec<Unreachable> {
-    let spec = &world.spec;
+pub fn unreachable_feasibility(spec: &ScenarioSpec) -> Vec<Unreachable> {
     let mut out = Vec::new();
-    let goal = DVec2::new(world.goal.x, world.goal.y);
+    let g = spec.goal.position;
+    let goal = DVec2::new(g[0], g[1]);
     for (k, u) in spec.uavs.iter().enumerate() {
         let start = DVec2::new(u.start[0], u.start[1]);
         for (j, t) in spec.threats.iter().enumerate() {
@@ -91,13 +92,10 @@ pub fn unreachable_feasibility(world: &World) -> Vec<Unreachable> {
             });
         }
     }
-    if world.goal.z < 0.0 {
+    if g[2] < 0.0 {
         out.push(Unreachable {
             field: "goal.position".into(),
-            reason: format!(
-                "its height above ground is {} m, below the terrain",
-                world.goal.z
-            ),
+            reason: format!("its height above ground is {} m, below the terrain", g[2]),
         });
     }
     out
