@@ -100,9 +100,11 @@ fn empty_indexed_tag(b: &[u8]) -> Option<&'static str> {
     let ifd = usize::try_from(ifd).ok()?;
     let entries = usize::try_from(int(ifd, count_len)?).ok()?;
     for e in 0..entries.min(4096) {
-        let at = ifd + count_len + e * entry_len;
+        // Offsets come from the file: checked, so a huge one ends the scan instead of
+        // overflowing.
+        let at = ifd.checked_add(count_len)?.checked_add(e * entry_len)?;
         let tag = u16::try_from(int(at, 2)?).ok()?;
-        let count = int(at + 4, n_len)?;
+        let count = int(at.checked_add(4)?, n_len)?;
         if let Some((_, name)) = INDEXED_TAGS.iter().find(|(t, _)| *t == tag) {
             if count == 0 {
                 return Some(name);
@@ -499,6 +501,17 @@ fn tiff_error(path: &Path, e: TiffError) -> DemError {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_tag_screen_survives_offsets_at_the_end_of_the_address_space() {
+        // BigTIFF header whose first IFD sits at u64::MAX.
+        let mut b = b"II+\0\x08\0\0\0".to_vec();
+        b.extend_from_slice(&u64::MAX.to_le_bytes());
+        assert_eq!(empty_indexed_tag(&b), None);
+        let mut c = b"MM\0*".to_vec();
+        c.extend_from_slice(&u32::MAX.to_be_bytes());
+        assert_eq!(empty_indexed_tag(&c), None);
+    }
 
     #[test]
     fn utm_codes_from_projection_and_datum() {
