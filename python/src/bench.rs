@@ -1,0 +1,99 @@
+//! `bench()`: an experiment matrix run by the same runner as the CLI's `bench` (parallel,
+//! resumable, one record per run in `OUT/runs.jsonl`), returning the records.
+
+use std::path::PathBuf;
+
+use pyo3::prelude::*;
+use swarmplan_experiment::matrix::{BudgetPolicy, ExperimentSpec, ParamSet};
+use swarmplan_experiment::runner::{run_experiment, RunnerOptions};
+
+use crate::args;
+use crate::errors::{bad, to_py};
+
+/// Most worker threads (as the CLI).
+const MAX_THREADS: i128 = 4096;
+
+/// Runs scenarios x methods x runs into `out` and returns every record of the folder as a
+/// JSON line (the lines of `runs.jsonl`), sorted by run identity.
+#[pyfunction]
+#[pyo3(signature = (
+    out, scenarios, methods, runs=1, seed=1, evaluations=None, iterations=None,
+    budget="equal", population=None, params=None, terrain=None, profile=None, threads=0,
+    resume=false
+))]
+#[allow(clippy::too_many_arguments)]
+pub fn bench(
+    py: Python<'_>,
+    out: PathBuf,
+    scenarios: Vec<String>,
+    methods: Vec<String>,
+    runs: i128,
+    seed: i128,
+    evaluations: Option<i128>,
+    iterations: Option<i128>,
+    budget: &str,
+    population: Option<i128>,
+    params: Option<PathBuf>,
+    terrain: Option<PathBuf>,
+    profile: Option<&str>,
+    threads: i128,
+    resume: bool,
+) -> PyResult<Vec<String>> {
+    let mut spec = ExperimentSpec::paper(args::seed("seed", seed)?);
+    spec.runs = args::positive("runs", runs)?;
+    spec.scenarios = scenarios;
+    spec.methods = methods
+        .iter()
+        .map(|m| args::method(m))
+        .collect::<PyResult<_>>()?;
+    let fixed = iterations.is_some() || evaluations.is_some();
+    spec.budget_policy = match budget {
+        "equal" => BudgetPolicy::Equal,
+        "paper" if fixed => {
+            return Err(bad(
+                "budget: `paper` gives each method its paper setting; it cannot be combined with iterations or evaluations",
+            ))
+        }
+        "paper" => BudgetPolicy::Paper,
+        other => {
+            return Err(bad(format!(
+                "budget: expected `equal` or `paper`, got `{other}`"
+            )))
+        }
+    };
+    if fixed {
+        spec.budget = args::budget(iterations, evaluations, spec.budget)?;
+    }
+    if params.is_some() || population.is_some() {
+        let name = if params.is_some() { "custom" } else { "paper" };
+        spec.param_sets = vec![ParamSet {
+            name: name.into(),
+            params: args::params(params, population)?,
+        }];
+    }
+    spec.terrain = terrain.map(|t| t.display().to_string());
+    if let Some(p) = profile {
+        spec.profile = args::profile(p)?;
+    }
+    if !(0..=MAX_THREADS).contains(&threads) {
+        return Err(bad(format!(
+            "threads: expected 0 (one per core) or at most {MAX_THREADS}, got {threads}"
+        )));
+    }
+    spec.validate().map_err(to_py)?;
+    let opts = RunnerOptions {
+        threads: usize::try_from(threads).map_err(to_py)?,
+        shard: None,
+        resume,
+    };
+    std::fs::create_dir_all(&out)
+        .map_err(|e| bad(format!("{}: cannot create: {e}", out.display())))?;
+    let outcome = py
+        .detach(|| run_experiment(&spec, &out, opts, &mut |_| {}, &|_| {}))
+        .map_err(to_py)?;
+    outcome
+        .records
+        .iter()
+        .map(|r| serde_json::to_string(r).map_err(to_py))
+        .collect()
+}

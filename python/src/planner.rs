@@ -1,0 +1,97 @@
+//! `plan()`: one planning run, the same run as the CLI's `plan` (same request, same
+//! `run_with_uav_trace`), so a seed gives the CLI's plan.
+
+use std::path::PathBuf;
+
+use pyo3::prelude::*;
+use serde_json::json;
+use swarmplan_core::run::{run_with_uav_trace, RunRequest};
+use swarmplan_io::artifact::{ArtifactFiles, RunArtifact};
+use swarmplan_io::plan_file::plan_file;
+
+use crate::errors::{bad, to_py};
+use crate::{args, scenario};
+
+/// Plans `scenario` and returns JSON with `run` (the CLI's `run.json`), `plan` (its
+/// `plan.json`), `convergence` (its `convergence.csv` rows), `uav_costs` (per iteration and
+/// UAV), `verdict` (the last line `plan` prints) and `notes`.
+#[pyfunction]
+#[pyo3(signature = (
+    scenario="paper-case1", method="swarmplan", seed=None, evaluations=None, iterations=None,
+    population=None, params=None, terrain=None, profile=None, time_limit=None,
+    until_feasible=false
+))]
+#[allow(clippy::too_many_arguments)]
+pub fn plan(
+    py: Python<'_>,
+    scenario: &str,
+    method: &str,
+    seed: Option<i128>,
+    evaluations: Option<i128>,
+    iterations: Option<i128>,
+    population: Option<i128>,
+    params: Option<PathBuf>,
+    terrain: Option<PathBuf>,
+    profile: Option<&str>,
+    time_limit: Option<f64>,
+    until_feasible: bool,
+) -> PyResult<String> {
+    let method = args::method(method)?;
+    let params = args::params(params, population)?;
+    let loaded = scenario::load(scenario, terrain, profile)?;
+    let world = &loaded.world;
+    let mut budget = args::budget(iterations, evaluations, method.optimizer.default_budget())?;
+    if let Some(t) = time_limit {
+        if !(t.is_finite() && t > 0.0 && t <= 1e7) {
+            return Err(bad(format!(
+                "time_limit: expected seconds in (0, 1e7], got {t}"
+            )));
+        }
+        // Truncation intended: milliseconds of a checked, bounded number of seconds.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let ms = (t * 1000.0).ceil() as u64;
+        budget.time_limit_ms = Some(ms);
+    }
+    budget.until_feasible = until_feasible;
+    let req = RunRequest {
+        method,
+        params,
+        budget,
+        seed: seed
+            .map(|s| args::seed("seed", s))
+            .transpose()?
+            .unwrap_or(world.spec.planning.seed),
+    };
+    let (result, uav_trace) = py.detach(|| run_with_uav_trace(world, &req, &mut |_| {}));
+    let artifact = RunArtifact::new(
+        world,
+        &result,
+        req.budget,
+        req.params,
+        ArtifactFiles::default(),
+    );
+    let n = world.uav_count().max(1) as f64;
+    let convergence: Vec<_> = result
+        .outcome
+        .trace
+        .iter()
+        .map(|r| {
+            json!({
+                "iteration": r.iteration,
+                "evaluations": r.evaluations,
+                "best_cost": r.best_cost,
+                "best_cost_per_uav": r.best_cost / n,
+                "best_violation": r.best_violation,
+            })
+        })
+        .collect();
+    let out = json!({
+        "run": artifact,
+        "plan": plan_file(world, &result.plan),
+        "convergence": convergence,
+        "uav_costs": uav_trace,
+        "verdict": result.assessment.verdict(),
+        "notes": loaded.notes,
+    });
+    serde_json::to_string(&out).map_err(to_py)
+}

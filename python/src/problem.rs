@@ -1,0 +1,270 @@
+//! `Problem`: one scenario under one encoding, as a box-bounded minimisation problem that a
+//! numpy optimiser can drive: bounds, a batch evaluation (parallel, in Rust), decoding and
+//! the full assessment.
+
+use std::path::PathBuf;
+
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
+use pyo3::prelude::*;
+use rayon::prelude::*;
+use swarmplan_core::cost::assess;
+use swarmplan_core::encoding::{EncodingKind, InitKind};
+use swarmplan_core::method::Method;
+use swarmplan_core::planning::PlanningProblem;
+use swarmplan_core::problem::{Bound as VarBound, Problem as _};
+use swarmplan_core::rng::rng_from_seed;
+use swarmplan_core::world::World;
+use swarmplan_io::artifact::AssessmentReport;
+use swarmplan_io::plan_file::{plan_file, read_plan, Provenance};
+
+use crate::errors::{bad, to_py};
+use crate::{args, scenario};
+
+/// Two arrays of the same length (costs and violations).
+type ArrayPair<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
+/// A scenario's planning problem in one encoding (see the Python class `swarmplan.Problem`).
+#[pyclass(module = "swarmplan._native", frozen)]
+pub struct Problem {
+    world: World,
+    method: Method,
+    bounds: Vec<VarBound>,
+    block_size: usize,
+    notes: Vec<String>,
+}
+
+impl Problem {
+    fn planning(&self) -> PlanningProblem<'_> {
+        PlanningProblem::new(&self.world, self.method.encoding, self.method.init)
+    }
+
+    /// `x` checked (length, finite) and brought into the box as the Rust optimizers bring
+    /// their candidates: periodic values wrap, others are clamped.
+    fn projected(&self, x: &[f64], row: Option<usize>) -> PyResult<Vec<f64>> {
+        if x.len() != self.bounds.len() {
+            return Err(bad(format!(
+                "x: expected {} values (the problem's dimension), got {}",
+                self.bounds.len(),
+                x.len()
+            )));
+        }
+        x.iter()
+            .zip(&self.bounds)
+            .enumerate()
+            .map(|(j, (&v, b))| {
+                if v.is_finite() {
+                    Ok(b.project(v))
+                } else {
+                    let at = row.map_or(format!("x[{j}]"), |i| format!("X[{i}, {j}]"));
+                    Err(bad(format!("{at}: expected a finite number, got {v}")))
+                }
+            })
+            .collect()
+    }
+
+    fn json<T: serde::Serialize>(value: &T) -> PyResult<String> {
+        serde_json::to_string(value).map_err(to_py)
+    }
+}
+
+#[pymethods]
+impl Problem {
+    #[new]
+    #[pyo3(signature = (scenario, terrain=None, method="swarmplan", encoding=None, init=None, profile=None))]
+    fn new(
+        scenario: &str,
+        terrain: Option<PathBuf>,
+        method: &str,
+        encoding: Option<&str>,
+        init: Option<&str>,
+        profile: Option<&str>,
+    ) -> PyResult<Self> {
+        let encoding = encoding
+            .map(|e| {
+                e.parse::<EncodingKind>().map_err(|_| {
+                    bad(format!(
+                        "encoding: expected spherical, cartesian or angle, got `{e}`"
+                    ))
+                })
+            })
+            .transpose()?;
+        let init = init
+            .map(|i| {
+                i.parse::<InitKind>()
+                    .map_err(|_| bad(format!("init: expected uniform or line, got `{i}`")))
+            })
+            .transpose()?;
+        let method = args::method(method)?.with(encoding, init);
+        let loaded = scenario::load(scenario, terrain, profile)?;
+        let planning = PlanningProblem::new(&loaded.world, method.encoding, method.init);
+        let bounds = planning.bounds().to_vec();
+        let block_size = planning.block_size();
+        Ok(Self {
+            world: loaded.world,
+            method,
+            bounds,
+            block_size,
+            notes: loaded.notes,
+        })
+    }
+
+    /// The scenario's name.
+    #[getter]
+    fn name(&self) -> String {
+        self.world.spec.name.clone()
+    }
+
+    /// The method whose encoding and initialisation the problem uses.
+    #[getter]
+    fn method(&self) -> String {
+        self.method.label()
+    }
+
+    #[getter]
+    fn encoding(&self) -> String {
+        self.method.encoding.to_string()
+    }
+
+    #[getter]
+    fn profile(&self) -> &'static str {
+        self.world.spec.planning.profile.name()
+    }
+
+    #[getter]
+    fn dimension(&self) -> usize {
+        self.bounds.len()
+    }
+
+    #[getter]
+    fn uav_count(&self) -> usize {
+        self.world.uav_count()
+    }
+
+    /// Values per UAV (one UAV's path is one block of the vector).
+    #[getter]
+    fn block_size(&self) -> usize {
+        self.block_size
+    }
+
+    #[getter]
+    fn notes(&self) -> Vec<String> {
+        self.notes.clone()
+    }
+
+    /// Lower bounds, upper bounds and the periodic mask, as three arrays.
+    #[allow(clippy::type_complexity)]
+    fn bounds<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> (
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray1<bool>>,
+    ) {
+        let lo: Vec<f64> = self.bounds.iter().map(|b| b.lo).collect();
+        let hi: Vec<f64> = self.bounds.iter().map(|b| b.hi).collect();
+        let periodic: Vec<bool> = self.bounds.iter().map(|b| b.periodic).collect();
+        (
+            lo.into_pyarray(py),
+            hi.into_pyarray(py),
+            periodic.into_pyarray(py),
+        )
+    }
+
+    /// Costs and violation measures of every row of `x` (shape (population, dimension)),
+    /// evaluated in parallel with the interpreter released. Row results do not depend on
+    /// the thread count: each evaluation is pure.
+    fn evaluate<'py>(
+        &self,
+        py: Python<'py>,
+        x: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<ArrayPair<'py>> {
+        let view = x.as_array();
+        let dim = self.bounds.len();
+        if view.ncols() != dim {
+            return Err(bad(format!(
+                "X: expected {dim} columns (the problem's dimension), got {}",
+                view.ncols()
+            )));
+        }
+        let mut flat = Vec::with_capacity(view.len());
+        for (i, row) in view.rows().into_iter().enumerate() {
+            let row: Vec<f64> = row.iter().copied().collect();
+            flat.extend(self.projected(&row, Some(i))?);
+        }
+        let evals: Vec<(f64, f64)> = py.detach(|| {
+            let planning = self.planning();
+            flat.par_chunks(dim.max(1))
+                .map(|r| {
+                    let e = planning.evaluate(r);
+                    (e.cost, e.violation)
+                })
+                .collect()
+        });
+        let (cost, violation): (Vec<f64>, Vec<f64>) = evals.into_iter().unzip();
+        Ok((cost.into_pyarray(py), violation.into_pyarray(py)))
+    }
+
+    /// `count` starting points drawn as the method's initialisation draws them, from `seed`.
+    fn sample_initial<'py>(
+        &self,
+        py: Python<'py>,
+        count: i128,
+        seed: i128,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let count: usize = args::positive("count", count)?;
+        let seed = args::seed("seed", seed)?;
+        let dim = self.bounds.len();
+        let planning = self.planning();
+        let mut rng = rng_from_seed(seed);
+        let mut flat = vec![0.0; count * dim];
+        for row in flat.chunks_mut(dim.max(1)) {
+            planning.sample_initial(&mut rng, row);
+        }
+        let a = Array2::from_shape_vec((count, dim), flat).map_err(to_py)?;
+        Ok(a.into_pyarray(py))
+    }
+
+    /// The plan file (JSON, as `plan.json`) of the plan that `x` decodes to.
+    fn decode(&self, x: PyReadonlyArray1<'_, f64>) -> PyResult<String> {
+        let x = self.projected(x.as_slice()?, None)?;
+        Self::json(&plan_file(&self.world, &self.planning().decode(&x)))
+    }
+
+    /// The full assessment (JSON, as `evaluate --json` prints it) of the plan `x` decodes to.
+    fn assess(&self, x: PyReadonlyArray1<'_, f64>) -> PyResult<String> {
+        let x = self.projected(x.as_slice()?, None)?;
+        let plan = self.planning().decode(&x);
+        Self::json(&AssessmentReport::of(&assess(&self.world, &plan, true)))
+    }
+
+    /// `evaluate --json` of a plan file.
+    #[pyo3(signature = (path, allow_other_terrain=false))]
+    fn evaluate_plan(&self, path: PathBuf, allow_other_terrain: bool) -> PyResult<String> {
+        let provenance = if allow_other_terrain {
+            Provenance::AllowOther
+        } else {
+            Provenance::MustMatch
+        };
+        let plan = read_plan(&path, &self.world, provenance).map_err(to_py)?;
+        Self::json(&AssessmentReport::of(&assess(&self.world, &plan, true)))
+    }
+
+    /// The decision vector nearest to a plan file's plan in this encoding.
+    #[pyo3(signature = (path, allow_other_terrain=false))]
+    fn encode_plan<'py>(
+        &self,
+        py: Python<'py>,
+        path: PathBuf,
+        allow_other_terrain: bool,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let provenance = if allow_other_terrain {
+            Provenance::AllowOther
+        } else {
+            Provenance::MustMatch
+        };
+        let plan = read_plan(&path, &self.world, provenance).map_err(to_py)?;
+        Ok(self.planning().encode(&plan).into_pyarray(py))
+    }
+}

@@ -1,0 +1,90 @@
+"""Bad input raises SwarmplanError (a ValueError) naming the field, with the CLI's message;
+nothing panics across the boundary."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import swarmplan
+from conftest import ROOT, cli_error
+
+TINY = (ROOT / "scenarios" / "tiny.toml").read_text()
+
+
+def raised(f, *a, **k) -> str:
+    with pytest.raises(swarmplan.SwarmplanError) as e:
+        f(*a, **k)
+    assert isinstance(e.value, ValueError)
+    return str(e.value)
+
+
+def test_unknown_scenario_has_the_cli_message(cli):
+    msg = raised(swarmplan.Problem, "no-such-scenario")
+    assert msg == cli_error(cli, "evaluate", "--scenario", "no-such-scenario", "--plan", "x.json")
+    assert "no-such-scenario" in msg
+
+
+def test_bad_scenario_field_is_named_as_the_cli_names_it(cli, tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text(TINY.replace("r = 25.0", "r = -25.0"))
+    msg = raised(swarmplan.Problem, bad)
+    assert "threats" in msg and str(bad) in msg
+    assert msg == cli_error(cli, "plan", "--scenario", str(bad), "--out", str(tmp_path / "o"))
+    typo = tmp_path / "typo.toml"
+    typo.write_text(TINY.replace("hills = 4", "hils = 4"))
+    assert "hils" in raised(swarmplan.plan, typo)
+
+
+def test_bad_plan_file_is_named_as_the_cli_names_it(cli, tmp_path):
+    plan = tmp_path / "plan.json"
+    plan.write_text('{"uavs": [{"waypoints": [[30, 30, 60], ["a", 1, 2]]}]}')
+    msg = raised(swarmplan.Problem("tiny").evaluate_plan, plan)
+    assert "uavs[0].waypoints[1]" in msg
+    assert msg == cli_error(cli, "evaluate", "--scenario", "tiny", "--plan", str(plan))
+
+
+def test_missing_terrain_file_names_the_argument(cli, tmp_path):
+    missing = tmp_path / "none.tif"
+    msg = raised(swarmplan.Problem, "tiny", terrain=missing)
+    assert str(missing) in msg
+    assert msg == cli_error(cli, "evaluate", "--scenario", "tiny", "--terrain", str(missing),
+                            "--plan", "x.json")
+
+
+def test_bad_batches_name_the_row_and_column():
+    p = swarmplan.Problem("tiny")
+    assert "expected 24 columns" in raised(p.evaluate, np.zeros((3, 5)))
+    X = p.sample_initial(2, 1)
+    X[1, 4] = np.nan
+    assert "X[1, 4]: expected a finite number, got NaN" in raised(p.evaluate, X)
+    assert "expected shape" in raised(p.evaluate, np.zeros((2, 2, 2)))
+    assert "x: expected 24 values" in raised(p.assess, np.zeros(3))
+    assert "count: expected at least 1" in raised(p.sample_initial, 0, 1)
+
+
+@pytest.mark.parametrize("kwargs,field", [
+    ({"evaluations": 0}, "evaluations: expected at least 1, got 0"),
+    ({"iterations": -3}, "iterations: expected at least 1, got -3"),
+    ({"seed": -1}, "seed: expected a whole number in [0, 2^64 - 1], got -1"),
+    ({"seed": 2**64}, "seed: expected a whole number"),
+    ({"method": "nope"}, "method: unknown method \"nope\""),
+    ({"profile": "lax"}, "profile: expected `strict` or `paper`, got `lax`"),
+    ({"population": 2}, "population: expected a whole number in [4, 100000], got 2"),
+    ({"time_limit": -1.0}, "time_limit: expected seconds in (0, 1e7], got -1"),
+])
+def test_bad_plan_arguments_name_the_argument(kwargs, field):
+    assert field in raised(swarmplan.plan, "tiny", **kwargs)
+
+
+def test_bad_bench_arguments_name_the_argument(tmp_path):
+    assert "runs: expected at least 1" in raised(swarmplan.bench, ["tiny"], ["gwo"], runs=0)
+    assert "methods: `gwo` appears twice" in raised(swarmplan.bench, ["tiny"], ["gwo", "gwo"])
+    assert "budget: expected `equal` or `paper`" in raised(
+        swarmplan.bench, ["tiny"], ["gwo"], budget="fair")
+    assert "threads" in raised(swarmplan.bench, ["tiny"], ["gwo"], threads=-1)
+    assert "single string" in raised(swarmplan.bench, "tiny", ["gwo"])
+    assert "no-such" in raised(swarmplan.bench, ["no-such"], ["gwo"], out=tmp_path / "b")
+    bad = tmp_path / "p.toml"
+    bad.write_text("[gwo]\npopulation = 1\n")
+    assert str(bad) in raised(swarmplan.bench, ["tiny"], ["gwo"], params=bad)
