@@ -209,6 +209,10 @@ pub struct ViolationSink {
     pub soft: f64,
     pub profile: FeasibilityProfile,
     pub list: Option<Vec<Violation>>,
+    /// Each UAV's share of `measure`, on request: a violation counts for its UAV and, for a
+    /// pair (separation), for the other UAV too. Lets a decomposing optimizer see which
+    /// UAVs' paths hold the violations.
+    pub by_uav: Option<Vec<f64>>,
 }
 
 /// Where and when a violation happened (all optional).
@@ -239,6 +243,16 @@ impl ViolationSink {
         }
     }
 
+    /// Also sums each UAV's share of the hard measure into [`ViolationSink::by_uav`]
+    /// (`uavs` entries, cleared).
+    #[must_use]
+    pub fn sharing(mut self, uavs: usize, mut buffer: Vec<f64>) -> Self {
+        buffer.clear();
+        buffer.resize(uavs, 0.0);
+        self.by_uav = Some(buffer);
+        self
+    }
+
     #[must_use]
     pub fn is_collecting(&self) -> bool {
         self.list.is_some()
@@ -260,7 +274,15 @@ impl ViolationSink {
         };
         let hard = self.profile.is_hard(kind);
         if hard {
-            self.measure += 1.0 + amount / kind.scale();
+            let m = 1.0 + amount / kind.scale();
+            self.measure += m;
+            if let Some(shares) = &mut self.by_uav {
+                for u in std::iter::once(uav).chain(at.other) {
+                    if let Some(s) = shares.get_mut(u) {
+                        *s += m;
+                    }
+                }
+            }
         } else {
             self.soft += 1.0 + amount / kind.scale();
         }

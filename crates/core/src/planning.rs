@@ -92,6 +92,19 @@ impl Problem for PlanningProblem<'_> {
         })
     }
 
+    fn evaluate_blocks(&self, x: &[f64], by_block: &mut Vec<f64>) -> Evaluation {
+        BUFFERS.with(|b| {
+            let mut b = b.borrow_mut();
+            let (plan, scratch) = &mut *b;
+            self.encoding.decode_into(x, plan);
+            let mut sink = ViolationSink::new(self.world.spec.planning.profile)
+                .sharing(self.world.uav_count(), std::mem::take(by_block));
+            let (cost, violation) = assess_into(self.world, plan, scratch, &mut sink, false);
+            *by_block = sink.by_uav.take().unwrap_or_default();
+            Evaluation::new(cost, violation)
+        })
+    }
+
     /// One UAV's path: 3 values per free waypoint.
     fn block_size(&self) -> usize {
         3 * self.frame.n

@@ -146,6 +146,15 @@ pub trait Problem: Sync {
         self.bounds().len()
     }
 
+    /// [`Problem::evaluate`], also writing into `by_block` each block's share of the
+    /// violation (a planning problem: each UAV's, a pair's violation counting for both), so
+    /// a decomposing optimizer can search where the violations are. The shares need not sum
+    /// to the violation. The default leaves `by_block` empty: nothing known.
+    fn evaluate_blocks(&self, x: &[f64], by_block: &mut Vec<f64>) -> Evaluation {
+        by_block.clear();
+        self.evaluate(x)
+    }
+
     /// Size of the blocks the variables come in (one UAV's path in a planning problem),
     /// for optimizers that decompose the search; the whole vector by default.
     fn block_size(&self) -> usize {

@@ -118,3 +118,31 @@ proptest! {
         prop_assert!(!e.cost.is_nan() && !e.violation.is_nan());
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// `evaluate_blocks` is `evaluate` plus each UAV's share of the violation, and a UAV has
+    /// a share exactly when a hard violation of the full assessment names it (as its UAV or,
+    /// for separation, as the other one).
+    #[test]
+    fn violation_shares_name_the_uavs_of_the_hard_violations(u in raw_vector(), kind in prop::sample::select(EncodingKind::ALL.to_vec())) {
+        let w = world();
+        let problem = PlanningProblem::new(w, kind, InitKind::Uniform);
+        let enc = build(kind, w);
+        let x = into_bounds(&u, enc.as_ref());
+        let x: Vec<f64> = x.iter().zip(problem.bounds()).map(|(v, b)| b.project(*v)).collect();
+        let mut shares = Vec::new();
+        let e = problem.evaluate_blocks(&x, &mut shares);
+        prop_assert_eq!(e, problem.evaluate(&x));
+        prop_assert_eq!(shares.len(), 5);
+        let a = problem.assess(&x);
+        let list = a.violations.unwrap_or_default();
+        for (i, share) in shares.iter().enumerate() {
+            let named = list.iter().any(|v| v.hard && (v.uav == i || v.other == Some(i)));
+            prop_assert_eq!(*share > 0.0, named, "UAV {}: share {}", i, share);
+            prop_assert!(*share <= e.violation + 1e-9);
+        }
+        prop_assert_eq!(e.violation == 0.0, shares.iter().all(|s| *s == 0.0));
+    }
+}

@@ -96,6 +96,23 @@ impl<'a> Evaluator<'a> {
         Some(Evaluation::new(e.cost, e.violation))
     }
 
+    /// [`Evaluator::evaluate`] with each block's share of the violation in `by_block`
+    /// ([`Problem::evaluate_blocks`]); counted the same.
+    pub fn evaluate_blocks(&mut self, x: &[f64], by_block: &mut Vec<f64>) -> Option<Evaluation> {
+        if self.limit.is_some_and(|l| self.count >= l) {
+            self.exhausted = true;
+            return None;
+        }
+        debug_assert_eq!(
+            x.len(),
+            self.bounds.len(),
+            "candidate of the wrong dimension"
+        );
+        self.count += 1;
+        let e = self.problem.evaluate_blocks(x, by_block);
+        Some(Evaluation::new(e.cost, e.violation))
+    }
+
     /// Evaluations performed so far.
     #[must_use]
     pub fn count(&self) -> u64 {
