@@ -438,6 +438,31 @@ fn more_threads_than_runs_is_no_hang_and_absurd_counts_are_refused() {
 }
 
 #[test]
+fn a_tiff_whose_sample_format_is_text_is_a_corrupt_file() {
+    // Found by the CI's 30-second `geotiff` fuzz smoke: SampleFormat stored as ASCII, which the
+    // `tiff` crate reads as an empty list and then indexes.
+    let path = reproducer("tiff-ascii-sampleformat.tif");
+    let dir = tempfile::tempdir().unwrap();
+    let err = fails_with(
+        &[
+            "plan",
+            "--scenario",
+            "tiny",
+            "--terrain",
+            path.to_str().unwrap(),
+            "--out",
+            dir.path().join("o").to_str().unwrap(),
+        ],
+        2,
+        &[
+            "tag SampleFormat is of TIFF type 2, expected an unsigned integer type",
+            "tiff-ascii-sampleformat.tif",
+        ],
+    );
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+#[test]
 fn a_tiff_the_decoder_would_panic_on_is_a_corrupt_file() {
     // Found by the `geotiff` fuzz target: a SampleFormat tag with no value made the `tiff`
     // crate index an empty list.

@@ -51,11 +51,11 @@ const PROJ_LINEAR_UNITS: u16 = 3076;
 const USER_DEFINED: u16 = 32767;
 
 pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<RawRaster, DemError> {
-    if let Some(tag) = empty_indexed_tag(bytes) {
+    if let Some(why) = unusable_indexed_tag(bytes) {
         return Err(DemError::Corrupt {
             path: path.into(),
             format: FORMAT,
-            detail: format!("tag {tag} has no value"),
+            detail: why,
         });
     }
     // Last line of defence: a panic inside the TIFF decoder on a crafted file is a corrupt
@@ -70,13 +70,17 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<RawRaster, DemError> {
 }
 
 /// Tags the `tiff` 0.10 decoder indexes at `[0]` without checking for an empty list: a
-/// count of 0 panics there (found by the `geotiff` fuzz target).
+/// count of 0 panics there, and so does a value of a non-integer type, which the decoder
+/// reads as an empty list (both found by the `geotiff` fuzz target).
 const INDEXED_TAGS: [(u16, &str); 1] = [(339, "SampleFormat")];
 
-/// The name of the first tag of [`INDEXED_TAGS`] whose count is 0 in the first IFD of a
-/// classic or BigTIFF file; `None` when there is none or the header cannot be read (the
-/// decoder then reports the problem itself).
-fn empty_indexed_tag(b: &[u8]) -> Option<&'static str> {
+/// TIFF field types of unsigned integers: BYTE, SHORT, LONG, LONG8.
+const UNSIGNED_TYPES: [u64; 4] = [1, 3, 4, 16];
+
+/// Why the first tag of [`INDEXED_TAGS`] in the first IFD of a classic or BigTIFF file
+/// cannot be read (no value, or not an unsigned integer); `None` when all can, or the header
+/// cannot be read (the decoder then reports the problem itself).
+fn unusable_indexed_tag(b: &[u8]) -> Option<String> {
     let little = match b.get(..2)? {
         b"II" => true,
         b"MM" => false,
@@ -104,10 +108,16 @@ fn empty_indexed_tag(b: &[u8]) -> Option<&'static str> {
         // overflowing.
         let at = ifd.checked_add(count_len)?.checked_add(e * entry_len)?;
         let tag = u16::try_from(int(at, 2)?).ok()?;
+        let kind = int(at.checked_add(2)?, 2)?;
         let count = int(at.checked_add(4)?, n_len)?;
         if let Some((_, name)) = INDEXED_TAGS.iter().find(|(t, _)| *t == tag) {
             if count == 0 {
-                return Some(name);
+                return Some(format!("tag {name} has no value"));
+            }
+            if !UNSIGNED_TYPES.contains(&kind) {
+                return Some(format!(
+                    "tag {name} is of TIFF type {kind}, expected an unsigned integer type (1, 3, 4 or 16)"
+                ));
             }
         }
     }
@@ -507,10 +517,10 @@ mod tests {
         // BigTIFF header whose first IFD sits at u64::MAX.
         let mut b = b"II+\0\x08\0\0\0".to_vec();
         b.extend_from_slice(&u64::MAX.to_le_bytes());
-        assert_eq!(empty_indexed_tag(&b), None);
+        assert_eq!(unusable_indexed_tag(&b), None);
         let mut c = b"MM\0*".to_vec();
         c.extend_from_slice(&u32::MAX.to_be_bytes());
-        assert_eq!(empty_indexed_tag(&c), None);
+        assert_eq!(unusable_indexed_tag(&c), None);
     }
 
     #[test]
