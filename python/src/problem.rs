@@ -11,6 +11,7 @@ use rayon::prelude::*;
 use swarmplan_core::cost::assess;
 use swarmplan_core::encoding::{EncodingKind, InitKind};
 use swarmplan_core::method::Method;
+use swarmplan_core::plan::Plan;
 use swarmplan_core::planning::PlanningProblem;
 use swarmplan_core::problem::{Bound as VarBound, Problem as _};
 use swarmplan_core::rng::rng_from_seed;
@@ -61,6 +62,16 @@ impl Problem {
                 }
             })
             .collect()
+    }
+
+    /// A plan file read for this scenario (or, when allowed, recorded for another).
+    fn read_plan(&self, path: &std::path::Path, allow_other_terrain: bool) -> PyResult<Plan> {
+        let provenance = if allow_other_terrain {
+            Provenance::AllowOther
+        } else {
+            Provenance::MustMatch
+        };
+        read_plan(path, &self.world, provenance).map_err(to_py)
     }
 
     fn json<T: serde::Serialize>(value: &T) -> PyResult<String> {
@@ -242,12 +253,7 @@ impl Problem {
     /// `evaluate --json` of a plan file.
     #[pyo3(signature = (path, allow_other_terrain=false))]
     fn evaluate_plan(&self, path: PathBuf, allow_other_terrain: bool) -> PyResult<String> {
-        let provenance = if allow_other_terrain {
-            Provenance::AllowOther
-        } else {
-            Provenance::MustMatch
-        };
-        let plan = read_plan(&path, &self.world, provenance).map_err(to_py)?;
+        let plan = self.read_plan(&path, allow_other_terrain)?;
         Self::json(&AssessmentReport::of(&assess(&self.world, &plan, true)))
     }
 
@@ -259,12 +265,7 @@ impl Problem {
         path: PathBuf,
         allow_other_terrain: bool,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let provenance = if allow_other_terrain {
-            Provenance::AllowOther
-        } else {
-            Provenance::MustMatch
-        };
-        let plan = read_plan(&path, &self.world, provenance).map_err(to_py)?;
+        let plan = self.read_plan(&path, allow_other_terrain)?;
         Ok(self.planning().encode(&plan).into_pyarray(py))
     }
 }

@@ -77,6 +77,14 @@ impl<'a> Evaluator<'a> {
     /// Evaluates `x`, or returns `None` (without evaluating or counting) when the budget is
     /// spent. NaN costs and violations come back as +inf, so a NaN never wins a comparison.
     pub fn evaluate(&mut self, x: &[f64]) -> Option<Evaluation> {
+        self.admit(x)?;
+        let e = self.problem.evaluate(x);
+        // Problems may build `Evaluation` literally; normalise NaN here once for everyone.
+        Some(Evaluation::new(e.cost, e.violation))
+    }
+
+    /// Counts one evaluation of `x`, or refuses (`None`) when the budget is spent.
+    fn admit(&mut self, x: &[f64]) -> Option<()> {
         if self.limit.is_some_and(|l| self.count >= l) {
             self.exhausted = true;
             return None;
@@ -91,24 +99,13 @@ impl<'a> Evaluator<'a> {
             "optimizer evaluated a candidate outside the bounds"
         );
         self.count += 1;
-        let e = self.problem.evaluate(x);
-        // Problems may build `Evaluation` literally; normalise NaN here once for everyone.
-        Some(Evaluation::new(e.cost, e.violation))
+        Some(())
     }
 
     /// [`Evaluator::evaluate`] with each block's share of the violation in `by_block`
     /// ([`Problem::evaluate_blocks`]); counted the same.
     pub fn evaluate_blocks(&mut self, x: &[f64], by_block: &mut Vec<f64>) -> Option<Evaluation> {
-        if self.limit.is_some_and(|l| self.count >= l) {
-            self.exhausted = true;
-            return None;
-        }
-        debug_assert_eq!(
-            x.len(),
-            self.bounds.len(),
-            "candidate of the wrong dimension"
-        );
-        self.count += 1;
+        self.admit(x)?;
         let e = self.problem.evaluate_blocks(x, by_block);
         Some(Evaluation::new(e.cost, e.violation))
     }
