@@ -22,6 +22,10 @@ use swarmplan_io::plan_file::{plan_file, read_plan, Provenance};
 use crate::errors::{bad, to_py};
 use crate::{args, scenario};
 
+/// Most values `sample_initial` returns (1 GiB of f64): a larger request is refused, not
+/// allocated.
+const MAX_SAMPLE_VALUES: usize = 1 << 27;
+
 /// Two arrays of the same length (costs and violations).
 type ArrayPair<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
 
@@ -227,6 +231,12 @@ impl Problem {
         let count: usize = args::positive("count", count)?;
         let seed = args::seed("seed", seed)?;
         let dim = self.bounds.len();
+        if count.saturating_mul(dim.max(1)) > MAX_SAMPLE_VALUES {
+            return Err(bad(format!(
+                "count: expected at most {} rows of {dim} values, got {count}",
+                MAX_SAMPLE_VALUES / dim.max(1)
+            )));
+        }
         let planning = self.planning();
         let mut rng = rng_from_seed(seed);
         let mut flat = vec![0.0; count * dim];

@@ -61,6 +61,7 @@ def test_bad_batches_name_the_row_and_column():
     assert "expected shape" in raised(p.evaluate, np.zeros((2, 2, 2)))
     assert "x: expected 24 values" in raised(p.assess, np.zeros(3))
     assert "count: expected at least 1" in raised(p.sample_initial, 0, 1)
+    assert "count: expected at most" in raised(p.sample_initial, 10**15, 1)
 
 
 @pytest.mark.parametrize("kwargs,field", [
@@ -79,6 +80,7 @@ def test_bad_plan_arguments_name_the_argument(kwargs, field):
 
 def test_bad_bench_arguments_name_the_argument(tmp_path):
     assert "runs: expected at least 1" in raised(swarmplan.bench, ["tiny"], ["gwo"], runs=0)
+    assert "is more than 10000000 runs" in raised(swarmplan.bench, ["tiny"], ["gwo"], runs=10**12)
     assert "methods: `gwo` appears twice" in raised(swarmplan.bench, ["tiny"], ["gwo", "gwo"])
     assert "budget: expected `equal` or `paper`" in raised(
         swarmplan.bench, ["tiny"], ["gwo"], budget="fair")

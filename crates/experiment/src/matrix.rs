@@ -87,6 +87,11 @@ impl BudgetPolicy {
     }
 }
 
+/// Most runs one experiment may hold: every run's key is listed before the runs start, so a
+/// matrix past this would fill memory before doing any work (at a millisecond per run it is
+/// still about three hours).
+pub const MAX_MATRIX_RUNS: usize = 10_000_000;
+
 /// The default equal budget: [`PAPER_EVALUATIONS`] evaluations.
 #[must_use]
 pub const fn equal_budget() -> Budget {
@@ -121,6 +126,22 @@ impl ExperimentSpec {
     pub fn validate(&self) -> Result<(), MatrixError> {
         if self.runs == 0 {
             return Err(MatrixError::Empty("runs must be at least 1".into()));
+        }
+        let size = [
+            self.scenarios.len(),
+            self.param_sets.len(),
+            self.methods.len(),
+        ]
+        .into_iter()
+        .try_fold(self.runs, usize::checked_mul);
+        if size.is_none_or(|n| n > MAX_MATRIX_RUNS) {
+            return Err(MatrixError::TooLarge(format!(
+                "runs: {} scenarios x {} methods x {} parameter sets x {} runs is more than {MAX_MATRIX_RUNS} runs",
+                self.scenarios.len(),
+                self.methods.len(),
+                self.param_sets.len(),
+                self.runs
+            )));
         }
         if self.scenarios.is_empty() || self.methods.is_empty() || self.param_sets.is_empty() {
             return Err(MatrixError::Empty(
@@ -260,6 +281,8 @@ pub enum MatrixError {
     Duplicate(String),
     #[error("experiment: {0}")]
     Params(String),
+    #[error("experiment: {0}")]
+    TooLarge(String),
     #[error("--shard: {0}")]
     Shard(String),
 }
@@ -267,6 +290,16 @@ pub enum MatrixError {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_matrix_too_large_to_list_is_refused() {
+        let mut spec = ExperimentSpec::paper(1);
+        spec.runs = usize::MAX;
+        let e = spec.validate().expect_err("refused");
+        assert!(e.to_string().contains("is more than 10000000 runs"), "{e}");
+        spec.runs = MAX_MATRIX_RUNS / spec.scenarios.len() / spec.methods.len();
+        assert!(spec.validate().is_ok());
+    }
 
     #[test]
     fn budgets_default_to_equal_evaluations() {
