@@ -220,9 +220,12 @@ impl Optimizer for Abc {
         self.best = BestSoFar::new(dim);
         self.scouts = 0;
         for i in 0..sn {
-            let x = row_mut(&mut self.x, i, dim);
-            ev.sample_initial(rng, x);
-            let e = ev.evaluate(x).unwrap_or(Evaluation::worst());
+            ev.sample_initial(rng, row_mut(&mut self.x, i, dim));
+        }
+        let mut evals = Vec::with_capacity(sn);
+        ev.evaluate_rows(&self.x, sn, &mut evals);
+        for i in 0..sn {
+            let e = evals.get(i).copied().unwrap_or(Evaluation::worst());
             self.eval[i] = e;
             self.best.offer(row(&self.x, i, dim), e);
         }

@@ -186,8 +186,7 @@ pub struct Cmaes {
     n: usize,
     state: Option<State>,
     restarts: u64,
-    /// Scratch: the candidate in the unit cube and in the problem's coordinates.
-    unit: Vec<f64>,
+    /// Scratch: a candidate in the problem's coordinates.
     point: Vec<f64>,
     best: BestSoFar,
 }
@@ -200,7 +199,6 @@ impl Cmaes {
             n: 0,
             state: None,
             restarts: 0,
-            unit: Vec::new(),
             point: Vec::new(),
             best: BestSoFar::new(0),
         }
@@ -278,7 +276,6 @@ impl Optimizer for Cmaes {
         self.n = ev.dimension();
         self.restarts = 0;
         self.best = BestSoFar::new(self.n);
-        self.unit = vec![0.0; self.n];
         self.point = vec![0.0; self.n];
         let lambda = if self.params.population > 0 {
             self.params.population
@@ -308,21 +305,24 @@ impl Optimizer for Cmaes {
         }
         let bounds = ev.bounds();
         let mut ys: Vec<DVector<f64>> = Vec::with_capacity(s.lambda);
-        let mut costs: Vec<f64> = Vec::with_capacity(s.lambda);
         let bd = scale_columns(&s.b, &s.d);
-        for _ in 0..s.lambda {
+        let mut points = vec![0.0; s.lambda * n];
+        for k in 0..s.lambda {
             let z = DVector::from_iterator(n, (0..n).map(|_| StandardNormal.sample(rng)));
             let mut y = &s.mean + (&bd * z) * s.sigma;
             for (j, b) in bounds.iter().enumerate() {
                 y[j] = project_unit(b, y[j]);
-                self.unit[j] = y[j];
-                self.point[j] = b.lo + y[j] * (b.hi - b.lo);
+                points[k * n + j] = b.lo + y[j] * (b.hi - b.lo);
             }
-            let Some(e) = ev.evaluate(&self.point) else {
-                break;
-            };
-            self.best.offer(&self.point, e);
             ys.push(y);
+        }
+        // The generation is sampled from a fixed state, so it is evaluated in parallel.
+        let mut evals = Vec::with_capacity(s.lambda);
+        ev.evaluate_rows(&points, s.lambda, &mut evals);
+        ys.truncate(evals.len());
+        let mut costs: Vec<f64> = Vec::with_capacity(s.lambda);
+        for (k, e) in evals.iter().enumerate() {
+            self.best.offer(&points[k * n..(k + 1) * n], *e);
             costs.push(e.cost);
         }
         let mu = s.weights.len();

@@ -24,8 +24,17 @@
 //!   Rechenberg's success rule)
 //! step:  v <- w v + c1 r1 (pbest - x) + c2 r2 (gbest - x); clamp |v| <= 0.5 w_j; x += v
 //!        (mirrored and clamped at the bounds as in SPSO); evaluate context with block b = x;
-//!        pbest, gbest and the context follow feasibility-first improvements at once
+//!        pbest, gbest and the context follow feasibility-first improvements
 //! ```
+//!
+//! **Synchronous** (`synchronous`, the default since issue 12): a visit's particles, and
+//! each step's, are made against the gbest and context of the step's start and evaluated
+//! together on every core ([`Evaluator::evaluate_rows_blocks`]); their results are then
+//! taken in particle order. With `synchronous = false` each particle is evaluated as soon as
+//! it moves and gbest and the context follow it at once (the method as measured before).
+//! Only block b changes within a visit, so an evaluation never depends on that choice; the
+//! centre of a visit's perturbations and the gbest of a step do. docs/performance.md
+//! measures both: feasibility is level.
 //!
 //! **Focus.** While the context is infeasible, the next visit goes to the next UAV (in
 //! turn) that holds a hard violation, its own or its half of a separation, as the problem
@@ -99,6 +108,11 @@ pub struct CoopParams {
     /// measured in docs/results.md: on the five hardest 20-UAV instances 22 of 25 runs
     /// feasible at 1.0, 20 at 0.5, 12 at 0; level on the paper cases).
     pub focus: f64,
+    /// Evaluate a sub-swarm's particles together, in parallel, against the gbest and
+    /// context of the step's start (true), or one after the other with gbest and the context
+    /// following each (false: the method as measured before issue 12). Either way a run is
+    /// the same for any thread count.
+    pub synchronous: bool,
 }
 
 impl CoopParams {
@@ -116,6 +130,7 @@ impl CoopParams {
         adaptive_spread: true,
         decompose: true,
         focus: 1.0,
+        synchronous: true,
     };
 
     pub fn validate(&self) -> Result<(), ParamsError> {
@@ -199,9 +214,11 @@ pub struct Cooperative {
     pbest_eval: Vec<Evaluation>,
     gbest: Vec<f64>,
     gbest_eval: Evaluation,
-    /// A whole vector to evaluate.
-    full: Vec<f64>,
-    /// One block's candidate.
+    /// Whole vectors to evaluate together, with their evaluations and block shares.
+    rows: Vec<f64>,
+    evals: Vec<Evaluation>,
+    row_shares: Vec<Vec<f64>>,
+    /// A point of the initialisation (fresh particles take one block of it).
     scratch: Vec<f64>,
     /// Spread s_b of each block's visits.
     spread: Vec<f64>,
@@ -219,7 +236,6 @@ pub struct Cooperative {
     /// last evaluation ([`Evaluator::evaluate_blocks`]; empty when the problem does not say).
     context_shares: Vec<f64>,
     best_shares: Vec<f64>,
-    shares: Vec<f64>,
     /// Block of the last visit in the cyclic order, visits since the round began, and the
     /// credit that decides the next focused visit.
     cyclic: usize,
@@ -250,7 +266,9 @@ impl Cooperative {
             pbest_eval: Vec::new(),
             gbest: Vec::new(),
             gbest_eval: Evaluation::worst(),
-            full: Vec::new(),
+            rows: Vec::new(),
+            evals: Vec::new(),
+            row_shares: Vec::new(),
             scratch: Vec::new(),
             spread: Vec::new(),
             visit_start: Evaluation::worst(),
@@ -261,24 +279,10 @@ impl Cooperative {
             restarts: 0,
             context_shares: Vec::new(),
             best_shares: Vec::new(),
-            shares: Vec::new(),
             cyclic: 0,
             visits: 0,
             focus_credit: 0.0,
         }
-    }
-
-    /// Evaluates `x`, keeping each block's share of the violation in `self.shares`.
-    fn evaluate(&mut self, x: &[f64], ev: &mut Evaluator<'_>) -> Option<Evaluation> {
-        ev.evaluate_blocks(x, &mut self.shares)
-    }
-
-    /// Makes `x` (just evaluated) block `b` of the context, with its shares.
-    fn take_context_block(&mut self, b: usize, x: &[f64], e: Evaluation) {
-        let r = self.range(b);
-        self.context[r].copy_from_slice(x);
-        self.context_eval = e;
-        self.context_shares.clone_from(&self.shares);
     }
 
     /// The block of the next visit: a violating one when focus is due, else the next in
@@ -325,16 +329,21 @@ impl Cooperative {
         self.cyclic = 0;
         self.visits = 0;
         self.spent = 0;
-        let mut x = vec![0.0; self.dim];
-        for i in 0..self.params.population.max(1) {
-            ev.sample_initial(rng, &mut x);
-            let Some(e) = self.evaluate(&x, ev) else {
-                break;
-            };
+        // The points are drawn first and evaluated together (in parallel): drawing never
+        // depends on an evaluation, so this is the same as one after the other.
+        let (pop, dim) = (self.params.population.max(1), self.dim);
+        self.rows.resize(pop * dim, 0.0);
+        for i in 0..pop {
+            ev.sample_initial(rng, &mut self.rows[i * dim..(i + 1) * dim]);
+        }
+        ev.evaluate_rows_blocks(&self.rows, pop, &mut self.evals, &mut self.row_shares);
+        for i in 0..self.evals.len() {
+            let e = self.evals[i];
             if i == 0 || self.better(&e, &self.context_eval) {
-                self.context.copy_from_slice(&x);
+                self.context
+                    .copy_from_slice(&self.rows[i * dim..(i + 1) * dim]);
                 self.context_eval = e;
-                self.context_shares.clone_from(&self.shares);
+                std::mem::swap(&mut self.context_shares, &mut self.row_shares[i]);
             }
         }
         self.round_start = self.context_eval;
@@ -361,26 +370,50 @@ impl Cooperative {
         lo..(lo + self.block).min(self.dim)
     }
 
-    /// Evaluates the context with block `b` replaced by `x` (a whole block).
-    fn evaluate_in_context(
-        &mut self,
-        b: usize,
-        x: &[f64],
-        ev: &mut Evaluator<'_>,
-    ) -> Option<Evaluation> {
-        let r = self.range(b);
-        self.full.copy_from_slice(&self.context);
-        self.full[r].copy_from_slice(x);
-        let full = std::mem::take(&mut self.full);
-        let e = self.evaluate(&full, ev);
-        self.full = full;
-        e
+    /// Particles evaluated together: the whole sub-swarm when synchronous (in parallel),
+    /// else one at a time.
+    fn chunk(&self) -> usize {
+        if self.params.synchronous {
+            self.params.population
+        } else {
+            1
+        }
     }
 
-    /// Offers a candidate block, evaluated last, to the context (feasibility first).
-    fn offer_context(&mut self, b: usize, x: &[f64], e: Evaluation) {
+    /// Evaluates particles `from..to` of the sub-swarm (their rows of `self.x`) in the
+    /// context with block `b` replaced, in parallel, into `self.evals` / `self.row_shares`.
+    fn evaluate_particles(&mut self, b: usize, from: usize, to: usize, ev: &mut Evaluator<'_>) {
+        let r = self.range(b);
+        let (len, dim) = (r.len(), self.dim);
+        self.rows.resize((to - from) * dim, 0.0);
+        for (k, i) in (from..to).enumerate() {
+            let row = &mut self.rows[k * dim..(k + 1) * dim];
+            row.copy_from_slice(&self.context);
+            row[r.clone()].copy_from_slice(&self.x[i * len..(i + 1) * len]);
+        }
+        ev.evaluate_rows_blocks(&self.rows, to - from, &mut self.evals, &mut self.row_shares);
+    }
+
+    /// Takes the evaluation of particle i (the k-th of its batch) as its pbest (always, or
+    /// when better), then offers it to gbest and the context (feasibility first).
+    fn take_particle(&mut self, b: usize, i: usize, k: usize, always: bool) {
+        let len = self.range(b).len();
+        let e = self.evals[k];
+        if !always && !self.better(&e, &self.pbest_eval[i]) {
+            return;
+        }
+        let row = i * len..(i + 1) * len;
+        self.pbest[row.clone()].copy_from_slice(&self.x[row.clone()]);
+        self.pbest_eval[i] = e;
+        if self.better(&e, &self.gbest_eval) {
+            self.gbest.copy_from_slice(&self.x[row.clone()]);
+            self.gbest_eval = e;
+        }
         if self.better(&e, &self.context_eval) {
-            self.take_context_block(b, x, e);
+            let r = self.range(b);
+            self.context[r].copy_from_slice(&self.x[row]);
+            self.context_eval = e;
+            std::mem::swap(&mut self.context_shares, &mut self.row_shares[k]);
         }
     }
 
@@ -402,47 +435,41 @@ impl Cooperative {
         self.gbest_eval = self.context_eval;
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let fresh = ((self.params.fresh * n as f64).round() as usize).min(n - 1);
-        let mut sample = vec![0.0; self.dim];
         self.visit_start = self.context_eval;
         let spread = self.spread[b];
-        for i in 0..n {
-            let row = i * len..(i + 1) * len;
-            if i == 0 {
-                self.x[row.clone()].copy_from_slice(&self.context[r.clone()]);
-            } else if i <= fresh {
-                ev.sample_initial(rng, &mut sample);
-                self.x[row.clone()].copy_from_slice(&sample[r.clone()]);
-            } else {
-                for (k, j) in r.clone().enumerate() {
-                    let bj: &Bound = &bounds[j];
-                    let sd = (spread * bj.width()).max(f64::MIN_POSITIVE);
-                    let noise = Normal::new(0.0, sd).map_or(0.0, |d| d.sample(rng));
-                    self.x[i * len + k] = into_bound(bj, self.context[j] + noise);
-                }
-            }
-            let mut candidate = std::mem::take(&mut self.scratch);
-            candidate.clear();
-            candidate.extend_from_slice(&self.x[row.clone()]);
-            let e = if i == 0 {
-                self.context_eval
-            } else {
-                match self.evaluate_in_context(b, &candidate, ev) {
-                    Some(e) => e,
-                    None => {
-                        self.scratch = candidate;
-                        return;
+        // Particle 0 is the context itself (already evaluated).
+        self.x[..len].copy_from_slice(&self.context[r.clone()]);
+        self.pbest[..len].copy_from_slice(&self.context[r.clone()]);
+        self.pbest_eval[0] = self.context_eval;
+        let mut sample = std::mem::take(&mut self.scratch);
+        sample.resize(self.dim, 0.0);
+        let mut from = 1;
+        while from < n {
+            let to = (from + self.chunk()).min(n);
+            for i in from..to {
+                if i <= fresh {
+                    ev.sample_initial(rng, &mut sample);
+                    self.x[i * len..(i + 1) * len].copy_from_slice(&sample[r.clone()]);
+                } else {
+                    for (k, j) in r.clone().enumerate() {
+                        let bj: &Bound = &bounds[j];
+                        let sd = (spread * bj.width()).max(f64::MIN_POSITIVE);
+                        let noise = Normal::new(0.0, sd).map_or(0.0, |d| d.sample(rng));
+                        self.x[i * len + k] = into_bound(bj, self.context[j] + noise);
                     }
                 }
-            };
-            self.pbest[row].copy_from_slice(&candidate);
-            self.pbest_eval[i] = e;
-            if self.better(&e, &self.gbest_eval) {
-                self.gbest.copy_from_slice(&candidate);
-                self.gbest_eval = e;
             }
-            self.offer_context(b, &candidate, e);
-            self.scratch = candidate;
+            self.evaluate_particles(b, from, to, ev);
+            let got = self.evals.len();
+            for k in 0..got {
+                self.take_particle(b, from + k, k, true);
+            }
+            if got < to - from {
+                break; // the budget is spent
+            }
+            from = to;
         }
+        self.scratch = sample;
     }
 
     /// One PSO iteration of the sub-swarm.
@@ -457,39 +484,39 @@ impl Cooperative {
             social: c2,
             ..
         } = self.params;
-        let mut candidate = vec![0.0; len];
-        for i in 0..self.params.population {
-            for (k, j) in r.clone().enumerate() {
-                let bj = &bounds[j];
-                let idx = i * len + k;
-                let r1: f64 = rng.random();
-                let r2: f64 = rng.random();
-                let vmax = 0.5 * bj.width();
-                let vj = (w * self.v[idx]
-                    + c1 * r1 * (self.pbest[idx] - self.x[idx])
-                    + c2 * r2 * (self.gbest[k] - self.x[idx]))
-                    .clamp(-vmax, vmax);
-                let moved = self.x[idx] + vj;
-                self.v[idx] = if !bj.periodic && !bj.contains(moved) {
-                    -vj
-                } else {
-                    vj
-                };
-                self.x[idx] = into_bound(bj, moved);
-                candidate[k] = self.x[idx];
-            }
-            let Some(e) = self.evaluate_in_context(b, &candidate, ev) else {
-                return;
-            };
-            if self.better(&e, &self.pbest_eval[i]) {
-                self.pbest[i * len..(i + 1) * len].copy_from_slice(&candidate);
-                self.pbest_eval[i] = e;
-                if self.better(&e, &self.gbest_eval) {
-                    self.gbest.copy_from_slice(&candidate);
-                    self.gbest_eval = e;
+        let n = self.params.population;
+        let mut from = 0;
+        while from < n {
+            let to = (from + self.chunk()).min(n);
+            for i in from..to {
+                for (k, j) in r.clone().enumerate() {
+                    let bj = &bounds[j];
+                    let idx = i * len + k;
+                    let r1: f64 = rng.random();
+                    let r2: f64 = rng.random();
+                    let vmax = 0.5 * bj.width();
+                    let vj = (w * self.v[idx]
+                        + c1 * r1 * (self.pbest[idx] - self.x[idx])
+                        + c2 * r2 * (self.gbest[k] - self.x[idx]))
+                        .clamp(-vmax, vmax);
+                    let moved = self.x[idx] + vj;
+                    self.v[idx] = if !bj.periodic && !bj.contains(moved) {
+                        -vj
+                    } else {
+                        vj
+                    };
+                    self.x[idx] = into_bound(bj, moved);
                 }
-                self.offer_context(b, &candidate, e);
             }
+            self.evaluate_particles(b, from, to, ev);
+            let got = self.evals.len();
+            for k in 0..got {
+                self.take_particle(b, from + k, k, false);
+            }
+            if got < to - from {
+                return; // the budget is spent
+            }
+            from = to;
         }
     }
 }
@@ -538,7 +565,6 @@ impl Optimizer for Cooperative {
         };
         self.context = vec![0.0; self.dim];
         self.context_eval = Evaluation::worst();
-        self.full = vec![0.0; self.dim];
         self.best.clear();
         self.best_eval = Evaluation::worst();
         self.best_shares.clear();

@@ -5,6 +5,14 @@
 //! re-draws, dimensional-learning probes, ABC scouts) and lets a budget be enforced exactly:
 //! once the budget is spent the evaluator refuses, returning `None` without evaluating or
 //! counting, and remembers that it refused so the loop can stop with the right reason.
+//!
+//! [`Evaluator::evaluate_rows`] evaluates a whole swarm at once on every thread of the rayon
+//! pool. Evaluation is pure, so the results, and with them every run, are the same bit for
+//! bit whatever the thread count: only the order in which an optimizer *uses* the results
+//! matters, and that stays the row order. Optimizers call it where their update is
+//! synchronous (a generation evaluated against a fixed state).
+
+use rayon::prelude::*;
 
 use super::progress::Progress;
 use crate::problem::{Bound, Evaluation, Problem};
@@ -78,9 +86,77 @@ impl<'a> Evaluator<'a> {
     /// spent. NaN costs and violations come back as +inf, so a NaN never wins a comparison.
     pub fn evaluate(&mut self, x: &[f64]) -> Option<Evaluation> {
         self.admit(x)?;
-        let e = self.problem.evaluate(x);
-        // Problems may build `Evaluation` literally; normalise NaN here once for everyone.
-        Some(Evaluation::new(e.cost, e.violation))
+        Some(normalised(self.problem.evaluate(x)))
+    }
+
+    /// Evaluates the first `n` rows of `rows` (each [`Evaluator::dimension`] long) in
+    /// parallel, as many as the budget allows (the first ones), into `out` in row order; a
+    /// row the budget refused has no entry, so `out.len()` says how many were evaluated.
+    /// Equal, row by row, to calling [`Evaluator::evaluate`] on each in turn.
+    pub fn evaluate_rows(&mut self, rows: &[f64], n: usize, out: &mut Vec<Evaluation>) {
+        let problem = self.problem;
+        let dim = self.dimension();
+        let allowed = self.admit_rows(rows, n);
+        out.clear();
+        if dim == 0 {
+            out.extend((0..allowed).map(|_| normalised(problem.evaluate(&[]))));
+            return;
+        }
+        rows[..allowed * dim]
+            .par_chunks(dim)
+            .map(|x| normalised(problem.evaluate(x)))
+            .collect_into_vec(out);
+    }
+
+    /// [`Evaluator::evaluate_rows`] with each row's block shares of the violation
+    /// ([`Problem::evaluate_blocks`]) in `shares[i]`.
+    pub fn evaluate_rows_blocks(
+        &mut self,
+        rows: &[f64],
+        n: usize,
+        out: &mut Vec<Evaluation>,
+        shares: &mut Vec<Vec<f64>>,
+    ) {
+        let problem = self.problem;
+        let dim = self.dimension();
+        let allowed = self.admit_rows(rows, n);
+        shares.resize_with(allowed.max(shares.len()), Vec::new);
+        out.clear();
+        if dim == 0 {
+            for s in shares.iter_mut().take(allowed) {
+                out.push(normalised(problem.evaluate_blocks(&[], s)));
+            }
+            return;
+        }
+        rows[..allowed * dim]
+            .par_chunks(dim)
+            .zip(shares[..allowed].par_iter_mut())
+            .map(|(x, s)| normalised(problem.evaluate_blocks(x, s)))
+            .collect_into_vec(out);
+    }
+
+    /// Counts as many of `n` rows as the budget allows and returns that number; marks the
+    /// evaluator exhausted when it refused some.
+    fn admit_rows(&mut self, rows: &[f64], n: usize) -> usize {
+        let dim = self.dimension();
+        assert!(rows.len() >= n * dim, "fewer rows than asked to evaluate");
+        let allowed = self
+            .remaining()
+            .map_or(n, |r| usize::try_from(r).unwrap_or(usize::MAX).min(n));
+        if allowed < n {
+            self.exhausted = true;
+        }
+        for i in 0..allowed {
+            debug_assert!(
+                rows[i * dim..(i + 1) * dim]
+                    .iter()
+                    .zip(self.bounds)
+                    .all(|(v, b)| b.contains(*v)),
+                "optimizer evaluated a candidate outside the bounds"
+            );
+        }
+        self.count += allowed as u64;
+        allowed
     }
 
     /// Counts one evaluation of `x`, or refuses (`None`) when the budget is spent.
@@ -106,8 +182,7 @@ impl<'a> Evaluator<'a> {
     /// ([`Problem::evaluate_blocks`]); counted the same.
     pub fn evaluate_blocks(&mut self, x: &[f64], by_block: &mut Vec<f64>) -> Option<Evaluation> {
         self.admit(x)?;
-        let e = self.problem.evaluate_blocks(x, by_block);
-        Some(Evaluation::new(e.cost, e.violation))
+        Some(normalised(self.problem.evaluate_blocks(x, by_block)))
     }
 
     /// Evaluations performed so far.
@@ -127,6 +202,11 @@ impl<'a> Evaluator<'a> {
     pub fn is_exhausted(&self) -> bool {
         self.exhausted
     }
+}
+
+/// Problems may build `Evaluation` literally; NaN is normalised here once for everyone.
+fn normalised(e: Evaluation) -> Evaluation {
+    Evaluation::new(e.cost, e.violation)
 }
 
 #[cfg(test)]
@@ -161,5 +241,23 @@ mod tests {
         assert!(ev.is_exhausted());
         assert_eq!(ev.count(), 2);
         assert_eq!(ev.remaining(), Some(0));
+    }
+
+    #[test]
+    fn rows_are_evaluated_in_order_within_the_budget() {
+        let p = Sum(vec![Bound::new(0.0, 1.0); 2]);
+        let rows = [0.1, 0.2, 0.3, 0.4, 0.5, 0.5];
+        let mut ev = Evaluator::new(&p, Some(4));
+        let mut out = Vec::new();
+        ev.evaluate_rows(&rows, 2, &mut out);
+        let sums: Vec<f64> = out.iter().map(|e| e.cost).collect();
+        assert_eq!(sums, vec![0.1 + 0.2, 0.3 + 0.4]);
+        assert!(!ev.is_exhausted());
+        ev.evaluate_rows(&rows, 3, &mut out);
+        assert_eq!(out.len(), 2, "the budget allowed two of three");
+        assert!(ev.is_exhausted());
+        assert_eq!(ev.count(), 4);
+        ev.evaluate_rows(&rows, 3, &mut out);
+        assert!(out.is_empty());
     }
 }

@@ -133,6 +133,16 @@ impl Gwo {
         (2.0 - 2.0 * frac).max(0.0)
     }
 
+    /// Evaluates the whole pack in parallel and offers each wolf to the leaders in order
+    /// (the leaders are fixed while the pack moves, so this is Mirjalili's update).
+    fn evaluate_pack(&mut self, ev: &mut Evaluator<'_>) {
+        let mut evals = Vec::with_capacity(self.n);
+        ev.evaluate_rows(&self.x, self.n, &mut evals);
+        for (i, e) in evals.into_iter().enumerate() {
+            self.leaders.offer(row(&self.x, i, self.dim), e);
+        }
+    }
+
     /// The costs of alpha, beta and delta (those present).
     #[must_use]
     pub fn leader_costs(&self) -> Vec<f64> {
@@ -155,12 +165,9 @@ impl Optimizer for Gwo {
         self.x = vec![0.0; self.n * dim];
         self.leaders = Leaders::new(dim);
         for i in 0..self.n {
-            let x = row_mut(&mut self.x, i, dim);
-            ev.sample_initial(rng, x);
-            if let Some(e) = ev.evaluate(x) {
-                self.leaders.offer(x, e);
-            }
+            ev.sample_initial(rng, row_mut(&mut self.x, i, dim));
         }
+        self.evaluate_pack(ev);
     }
 
     fn step(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng) {
@@ -190,11 +197,7 @@ impl Optimizer for Gwo {
                 x[j] = into_bound(&bounds[j], sum / 3.0);
             }
         }
-        for i in 0..self.n {
-            let x = row(&self.x, i, dim);
-            let Some(e) = ev.evaluate(x) else { break };
-            self.leaders.offer(x, e);
-        }
+        self.evaluate_pack(ev);
     }
 
     fn best(&self) -> (&[f64], Evaluation) {

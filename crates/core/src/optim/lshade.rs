@@ -317,9 +317,11 @@ impl Optimizer for Lshade {
         self.slot = 0;
         self.best = BestSoFar::new(dim);
         for i in 0..self.n {
-            let x = row_mut(&mut self.x, i, dim);
-            ev.sample_initial(rng, x);
-            let Some(e) = ev.evaluate(x) else { break };
+            ev.sample_initial(rng, row_mut(&mut self.x, i, dim));
+        }
+        let mut evals = Vec::with_capacity(self.n);
+        ev.evaluate_rows(&self.x, self.n, &mut evals);
+        for (i, e) in evals.into_iter().enumerate() {
             self.eval[i] = e;
             self.best.offer(row(&self.x, i, dim), e);
         }
@@ -376,12 +378,9 @@ impl Optimizer for Lshade {
         // Evaluate every trial, then select (the population of this generation is fixed
         // while trials are made, as in the paper).
         let mut trial_eval = Vec::with_capacity(n);
-        for i in 0..n {
-            let Some(e) = ev.evaluate(row(&self.trial, i, dim)) else {
-                break;
-            };
-            self.best.offer(row(&self.trial, i, dim), e);
-            trial_eval.push(e);
+        ev.evaluate_rows(&self.trial, n, &mut trial_eval);
+        for (i, e) in trial_eval.iter().enumerate() {
+            self.best.offer(row(&self.trial, i, dim), *e);
         }
         let (mut s_cr, mut s_f, mut w) = (Vec::new(), Vec::new(), Vec::new());
         for (i, e) in trial_eval.iter().enumerate() {

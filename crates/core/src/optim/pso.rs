@@ -157,6 +157,8 @@ pub(crate) struct Swarm {
     w_whole: f64,
     /// Whole nominal iterations already folded into `w_whole`.
     whole_applied: u64,
+    /// Evaluations of the last parallel batch (a reused buffer).
+    evals: Vec<Evaluation>,
 }
 
 impl Swarm {
@@ -172,6 +174,7 @@ impl Swarm {
             pbest: vec![0.0; n * dim],
             pbest_eval: vec![Evaluation::worst(); n],
             gbest: BestSoFar::new(dim),
+            evals: Vec::with_capacity(n),
             // abs and the NaN guard only matter for unvalidated parameters or a zero-width
             // bound with an infinite clamp; `f64::clamp` would panic on them.
             vmax: bounds
@@ -215,13 +218,17 @@ impl Swarm {
     /// their position with the worst evaluation.
     pub fn initialize(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng) {
         let dim = self.dim;
+        let mut evals = Vec::with_capacity(self.n);
         for _draw in 0..=self.params.initial_redraws {
             self.gbest.clear();
             for i in 0..self.n {
-                let x = row_mut(&mut self.x, i, dim);
-                ev.sample_initial(rng, x);
+                ev.sample_initial(rng, row_mut(&mut self.x, i, dim));
                 row_mut(&mut self.v, i, dim).fill(0.0);
-                let e = ev.evaluate(x).unwrap_or(Evaluation::worst());
+            }
+            ev.evaluate_rows(&self.x, self.n, &mut evals);
+            for i in 0..self.n {
+                let x = row(&self.x, i, dim);
+                let e = evals.get(i).copied().unwrap_or(Evaluation::worst());
                 row_mut(&mut self.pbest, i, dim).copy_from_slice(x);
                 self.pbest_eval[i] = e;
                 self.gbest.offer(x, e);
@@ -289,6 +296,23 @@ impl Swarm {
         Some(true)
     }
 
+    /// Evaluates every particle where it stands, in parallel, and updates each pbest_i (strict
+    /// improvement); gbest waits for [`Swarm::end_iteration`] (synchronous updates only).
+    pub fn evaluate_swarm(&mut self, ev: &mut Evaluator<'_>) {
+        debug_assert!(!self.params.asynchronous);
+        let dim = self.dim;
+        let mut evals = std::mem::take(&mut self.evals);
+        ev.evaluate_rows(&self.x, self.n, &mut evals);
+        for (i, e) in evals.iter().enumerate() {
+            if e.better_than(&self.pbest_eval[i]) {
+                let x = row(&self.x, i, dim);
+                row_mut(&mut self.pbest, i, dim).copy_from_slice(x);
+                self.pbest_eval[i] = *e;
+            }
+        }
+        self.evals = evals;
+    }
+
     /// Offers pbest_i to gbest.
     pub fn offer_pbest(&mut self, i: usize) -> bool {
         self.gbest
@@ -341,14 +365,24 @@ impl Optimizer for Pso {
         self.swarm.initialize(ev, rng);
     }
 
+    /// Asynchronous: move and evaluate one particle after the other (gbest moves at once).
+    /// Synchronous: move every particle against the same gbest, then evaluate the swarm in
+    /// parallel ([`Evaluator::evaluate_rows`]); the same run as one after the other.
     fn step(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng) {
         let bounds = ev.bounds();
         self.swarm.schedule(ev.progress());
-        for i in 0..self.swarm.n {
-            self.swarm.move_particle(i, None, 0.0, bounds, rng);
-            if self.swarm.evaluate_particle(i, ev).is_none() {
-                break;
+        if self.swarm.params.asynchronous {
+            for i in 0..self.swarm.n {
+                self.swarm.move_particle(i, None, 0.0, bounds, rng);
+                if self.swarm.evaluate_particle(i, ev).is_none() {
+                    break;
+                }
             }
+        } else {
+            for i in 0..self.swarm.n {
+                self.swarm.move_particle(i, None, 0.0, bounds, rng);
+            }
+            self.swarm.evaluate_swarm(ev);
         }
         self.swarm.end_iteration();
     }

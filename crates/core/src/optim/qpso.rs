@@ -139,11 +139,14 @@ impl Optimizer for Qpso {
         self.mbest = vec![0.0; dim];
         self.beta = self.params.beta_start;
         for i in 0..n {
-            let x = row_mut(&mut self.x, i, dim);
-            ev.sample_initial(rng, x);
-            let e = ev.evaluate(x).unwrap_or(Evaluation::worst());
+            ev.sample_initial(rng, row_mut(&mut self.x, i, dim));
+        }
+        let mut evals = Vec::with_capacity(n);
+        ev.evaluate_rows(&self.x, n, &mut evals);
+        for i in 0..n {
+            let e = evals.get(i).copied().unwrap_or(Evaluation::worst());
             self.pbest_eval[i] = e;
-            self.gbest.offer(x, e);
+            self.gbest.offer(row(&self.x, i, dim), e);
         }
         self.pbest.clone_from(&self.x);
     }

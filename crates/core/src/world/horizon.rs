@@ -59,7 +59,7 @@ impl Horizon {
         let dy = p.y - self.origin.y;
         let d = (dx * dx + dy * dy).sqrt();
         // Samples strictly nearer than p: k * step < d.
-        let k = ((d / self.step).ceil() as usize).saturating_sub(1);
+        let k = ceil_index(d / self.step).saturating_sub(1);
         if k == 0 {
             return true;
         }
@@ -68,6 +68,16 @@ impl Horizon {
             ((diamond_angle(dx, dy) * 0.25 * HORIZON_BINS as f64) as usize).min(HORIZON_BINS - 1);
         let slope = (p.z - self.origin.z) / d;
         slope > f64::from(self.table[b * self.steps + k - 1])
+    }
+}
+
+/// ceil(q) as an index for q >= 0 (saturating), without a libm call.
+fn ceil_index(q: f64) -> usize {
+    let k = q as usize;
+    if (k as f64) < q {
+        k.saturating_add(1)
+    } else {
+        k
     }
 }
 

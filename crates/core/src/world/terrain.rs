@@ -240,8 +240,10 @@ impl Terrain {
         // Cell range at level 0; nearest sampling may read a node half a cell further out.
         let cells = |a: f64, b: f64, origin: f64, d: f64, n: usize| {
             let last = (n - 2) as f64;
-            let lo = ((a.min(b) - origin) / d - 0.5).floor().clamp(0.0, last) as usize;
-            let hi = ((a.max(b) - origin) / d + 0.5).floor().clamp(0.0, last) as usize;
+            // Clamped into [0, last] first, truncation is floor (and NaN becomes 0 as
+            // before): no libm call on the hot path.
+            let lo = ((a.min(b) - origin) / d - 0.5).clamp(0.0, last) as usize;
+            let hi = ((a.max(b) - origin) / d + 0.5).clamp(0.0, last) as usize;
             (lo, hi)
         };
         let (mut i0, mut i1) = cells(xa, xb, self.x0, self.dx, self.nx);
