@@ -22,6 +22,11 @@ use crate::world::World;
 /// adds its penalty to the cost, as the paper's Eqs. 6 and 8 make communication and
 /// proximity cost terms, but it does not make the plan infeasible. Tables 4-5 in both
 /// profiles let a reader hold our FR against the paper's.
+///
+/// The profiles also differ in what is assessed (issue 15, [`World::flies_arcs`]): `strict`
+/// assesses the *flown* path, an arc of each UAV's turning radius through every corner, and
+/// requires the straight flight those arcs need; `paper` keeps the paper's model of straight
+/// segments with a turn-angle limit, and no turning radius.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum FeasibilityProfile {
@@ -85,6 +90,10 @@ pub enum ViolationKind {
     Turn,
     /// Climb or dive angle above the limit on a segment; amount in degrees.
     Climb,
+    /// Too little straight flight between turns for the turning radius: the tangent lengths
+    /// R tan(theta / 2) of a segment's two ends exceed it; amount in metres (strict profile,
+    /// issue 15; the paper's model has no turning radius).
+    TurnRadius,
     /// Speed outside [v_min, v_max]; amount in m/s.
     Speed,
     /// Payload above W_max; amount in kg.
@@ -98,13 +107,14 @@ pub enum ViolationKind {
 }
 
 impl ViolationKind {
-    pub const ALL: [ViolationKind; 11] = [
+    pub const ALL: [ViolationKind; 12] = [
         Self::Threat,
         Self::Terrain,
         Self::Altitude,
         Self::Bounds,
         Self::Turn,
         Self::Climb,
+        Self::TurnRadius,
         Self::Speed,
         Self::Payload,
         Self::Energy,
@@ -121,6 +131,7 @@ impl ViolationKind {
             Self::Bounds => "bounds",
             Self::Turn => "turn",
             Self::Climb => "climb",
+            Self::TurnRadius => "turn-radius",
             Self::Speed => "speed",
             Self::Payload => "payload",
             Self::Energy => "energy",
@@ -135,14 +146,20 @@ impl ViolationKind {
     /// least 1, and each further unit adds 1. A unit is the resolution at which a violation
     /// still matters to an operator and at which the penalty (1000 per unit by default)
     /// outweighs what the objective pays for avoiding it (about 5-15 per metre of path):
-    /// 1 m of geometry (threat, terrain, altitude band, map box, separation), 1 deg of turn
+    /// 1 m of geometry (threat, terrain, altitude band, map box, separation, straight flight
+    /// missing for the turning radius), 1 deg of turn
     /// or climb, 0.1 m/s of speed, 0.01 kg of payload, 1 % of the usable battery, 1 s of
     /// contact beyond the tolerated outage. (The first build summed raw amounts, which
     /// made a kilogram of payload weigh as much as a metre of threat intrusion.)
     #[must_use]
     pub const fn scale(self) -> f64 {
         match self {
-            Self::Threat | Self::Terrain | Self::Altitude | Self::Bounds | Self::Separation => 1.0,
+            Self::Threat
+            | Self::Terrain
+            | Self::Altitude
+            | Self::Bounds
+            | Self::Separation
+            | Self::TurnRadius => 1.0,
             Self::Turn | Self::Climb => 1.0,
             Self::Speed => 0.1,
             Self::Payload => 0.01,
@@ -154,7 +171,12 @@ impl ViolationKind {
     #[must_use]
     pub const fn unit(self) -> &'static str {
         match self {
-            Self::Threat | Self::Terrain | Self::Altitude | Self::Bounds | Self::Separation => "m",
+            Self::Threat
+            | Self::Terrain
+            | Self::Altitude
+            | Self::Bounds
+            | Self::Separation
+            | Self::TurnRadius => "m",
             Self::Turn | Self::Climb => "deg",
             Self::Speed => "m/s",
             Self::Payload => "kg",

@@ -14,6 +14,7 @@
 pub mod cost;
 pub mod encoding;
 pub mod feasibility;
+pub mod flight;
 pub mod json_f64;
 pub mod method;
 pub mod optim;

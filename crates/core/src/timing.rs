@@ -30,6 +30,9 @@ pub struct TimedPath {
     pub speed: f64,
     /// Arrival time (s).
     pub arrival: f64,
+    /// Of a flown path ([`TimedPlan::fill_flown`]): where each segment comes from (an arc
+    /// chord or a straight piece, of which waypoint segment). Empty for a waypoint path.
+    pub flown: Vec<crate::flight::FlownSegment>,
 }
 
 impl TimedPath {
@@ -43,6 +46,26 @@ impl TimedPath {
                 s += a.distance(self.abs[k - 1]);
             }
             self.abs.push(a);
+            self.cum.push(s);
+        }
+        self.length = s;
+    }
+
+    /// The waypoint segment that segment `s` of this path lies on (itself for a waypoint
+    /// path), so violations name the plan's segments.
+    #[must_use]
+    pub fn waypoint_segment(&self, s: usize) -> usize {
+        self.flown.get(s).map_or(s, |f| f.waypoint_segment)
+    }
+
+    /// Recomputes the arc lengths of `abs`.
+    fn fill_lengths(&mut self) {
+        self.cum.clear();
+        let mut s = 0.0;
+        for (k, a) in self.abs.iter().enumerate() {
+            if k > 0 {
+                s += a.distance(self.abs[k - 1]);
+            }
             self.cum.push(s);
         }
         self.length = s;
@@ -114,7 +137,31 @@ impl TimedPlan {
         self.paths.resize_with(n, TimedPath::default);
         for (tp, path) in self.paths.iter_mut().zip(&plan.uavs) {
             tp.fill_geometry(world, path);
+            tp.flown.clear();
         }
+        self.schedule(world);
+    }
+
+    /// The flown trajectory of `waypoints` (an arc of each UAV's turning radius through
+    /// every corner, [`crate::flight`]), timed by the same policy on its own lengths.
+    pub fn fill_flown(&mut self, world: &World, waypoints: &TimedPlan, tangents: &mut Vec<f64>) {
+        let n = waypoints.paths.len();
+        self.paths.resize_with(n, TimedPath::default);
+        for (u, (tp, wp)) in self.paths.iter_mut().zip(&waypoints.paths).enumerate() {
+            crate::flight::flown_polyline(
+                &wp.abs,
+                world.spec.uavs[u].turn_radius,
+                tangents,
+                &mut tp.abs,
+                &mut tp.flown,
+            );
+            tp.fill_lengths();
+        }
+        self.schedule(world);
+    }
+
+    /// Speeds, arrivals and the horizon from the paths' lengths under the timing policy.
+    fn schedule(&mut self, world: &World) {
         let uavs = &world.spec.uavs;
         match world.spec.timing.policy {
             TimingPolicy::Cruise => {
@@ -216,6 +263,7 @@ mod tests {
             length: 20.0,
             speed: 2.0,
             arrival: 10.0,
+            flown: Vec::new(),
         };
         assert!(tp.position_at_time(2.5).distance(DVec3::new(5.0, 0.0, 0.0)) < 1e-12);
         assert!(

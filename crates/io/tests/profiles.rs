@@ -1,5 +1,6 @@
 //! Feasibility profiles: `paper` moves the cost-only kinds out of the feasibility verdict
-//! and changes nothing else.
+//! and assesses the waypoint segments instead of the flown path; with a turning radius of
+//! 0 (so the flown path is the waypoint polyline) nothing else changes.
 
 #![allow(clippy::unwrap_used)] // tests fail loudly by design
 
@@ -12,6 +13,10 @@ use swarmplan_io::scenario::{build_world, load_spec};
 fn the_paper_profile_counts_only_its_hard_kinds_and_costs_the_same() {
     for case in ["paper-case1", "paper-case2"] {
         let mut loaded = load_spec(case).unwrap();
+        let arcs_world = build_world(&loaded, None).unwrap();
+        for u in &mut loaded.spec.uavs {
+            u.turn_radius = 0.0;
+        }
         let strict_world = build_world(&loaded, None).unwrap();
         loaded.spec.planning.profile = FeasibilityProfile::Paper;
         let paper_world = build_world(&loaded, None).unwrap();
@@ -22,6 +27,19 @@ fn the_paper_profile_counts_only_its_hard_kinds_and_costs_the_same() {
         let plan = Plan::straight(&starts, strict_world.goal, 10);
         let strict = assess(&strict_world, &plan, true);
         let paper = assess(&paper_world, &plan, true);
+        // The flown path (radius 50 m) is another trajectory: another cost.
+        let arcs = assess(&arcs_world, &plan, true);
+        assert_ne!(arcs.total, strict.total, "{case}");
+        let paper_default_radius = {
+            let mut l = load_spec(case).unwrap();
+            l.spec.planning.profile = FeasibilityProfile::Paper;
+            build_world(&l, None).unwrap()
+        };
+        assert_eq!(
+            assess(&paper_default_radius, &plan, false).total.to_bits(),
+            paper.total.to_bits(),
+            "{case}: the paper profile ignores the turning radius"
+        );
         let sv = strict.violations.clone().unwrap();
         let pv = paper.violations.clone().unwrap();
         assert_eq!(sv.len(), pv.len(), "{case}: the same violations are found");

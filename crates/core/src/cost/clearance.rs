@@ -77,7 +77,7 @@ pub fn check_clearance(
                 uav,
                 map.clearance - worst,
                 At {
-                    index: Some(s),
+                    index: Some(tp.waypoint_segment(s)),
                     position: Some(worst_at),
                     time: Some(time),
                     ..At::default()

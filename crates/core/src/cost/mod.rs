@@ -128,7 +128,11 @@ impl Assessment {
 /// Buffers reused across evaluations.
 #[derive(Debug, Clone, Default)]
 pub struct Scratch {
+    /// The plan's waypoint polylines, timed.
     pub timed: TimedPlan,
+    /// What is flown ([`World::flies_arcs`]): arcs through the corners, timed.
+    pub flown: TimedPlan,
+    tangents: Vec<f64>,
     comm: comm::CommScratch,
     comm_out: Vec<comm::CommOutcome>,
     prox: proximity::ProximityScratch,
@@ -181,13 +185,25 @@ pub fn assess_into(
     let n = plan.uavs.len();
     let spso_preset = world.spec.objective.preset == ObjectivePreset::Spso;
     scratch.timed.fill(world, plan);
+    let flies_arcs = world.flies_arcs();
+    if flies_arcs {
+        scratch
+            .flown
+            .fill_flown(world, &scratch.timed, &mut scratch.tangents);
+    }
+    // Where each UAV is when: the flown path, or the waypoint polyline.
+    let motion = if flies_arcs {
+        &scratch.flown
+    } else {
+        &scratch.timed
+    };
     scratch.reports.resize_with(n, UavReport::default);
     scratch.comm_out.resize(n, comm::CommOutcome::default());
     scratch.prox_out.resize(n, 0.0);
     if !spso_preset {
         comm::communication(
             world,
-            &scratch.timed,
+            motion,
             &mut scratch.comm,
             sink,
             &mut scratch.comm_out,
@@ -195,7 +211,7 @@ pub fn assess_into(
         proximity::proximity(
             world,
             plan,
-            &scratch.timed,
+            motion,
             &mut scratch.prox,
             sink,
             &mut scratch.prox_out,
@@ -203,12 +219,27 @@ pub fn assess_into(
     }
     let mut terms_cost = 0.0;
     for (u, path) in plan.uavs.iter().enumerate() {
+        // SPSO's terms, turn and climb limits are properties of the waypoints; what
+        // follows the UAV in time and space (clearance, speed, energy) is of what is flown.
         let tp = &scratch.timed.paths[u];
+        let fp = &motion.paths[u];
         let spso_terms = spso::spso_terms(world, u, path, tp, spso_preset, sink);
         let kin = kinematics::kinematics(world, u, tp, !spso_preset, sink);
-        let min_clearance = clearance::check_clearance(world, u, path, tp, exact, sink);
-        let safety = safety::safety_term(world, u, tp, sink);
-        let joules = energy::physical_energy(world, u, tp, &kin);
+        if flies_arcs {
+            crate::flight::check_turn_radius(
+                u,
+                &tp.abs,
+                |k| tp.time_at(k),
+                world.spec.uavs[u].turn_radius,
+                &mut scratch.tangents,
+                sink,
+            );
+            crate::flight::check_arc_threats(world, u, fp, sink);
+        }
+        let min_clearance = clearance::check_clearance(world, u, path, fp, exact, sink);
+        let segments = tp.abs.len().saturating_sub(1);
+        let safety = safety::safety_term(world, u, fp, segments, sink);
+        let joules = energy::physical_energy(world, u, fp, &kin);
         let battery_ratio = energy::check_battery(world, u, joules, sink);
         let mut raw = Terms::default();
         raw[TermId::Length] = spso_terms.length;
@@ -216,7 +247,7 @@ pub fn assess_into(
         raw[TermId::Altitude] = spso_terms.altitude;
         raw[TermId::Smoothness] = spso_terms.smoothness;
         raw[TermId::Safety] = safety;
-        raw[TermId::Energy] = energy::energy_term(world, tp, &kin);
+        raw[TermId::Energy] = energy::energy_term(world, fp, &kin);
         raw[TermId::Communication] = scratch.comm_out[u].cost;
         raw[TermId::Turning] = kin.turn_sq;
         raw[TermId::Obstacle] = scratch.prox_out[u];
@@ -227,9 +258,9 @@ pub fn assess_into(
             raw,
             weighted,
             cost,
-            length_m: tp.length,
-            speed_mps: tp.speed,
-            arrival_s: tp.arrival,
+            length_m: fp.length,
+            speed_mps: fp.speed,
+            arrival_s: fp.arrival,
             energy_j: joules,
             battery_ratio,
             min_clearance_m: min_clearance,

@@ -5,11 +5,18 @@ use crate::feasibility::{At, ViolationKind, ViolationSink};
 use crate::timing::TimedPath;
 use crate::world::World;
 
-/// Counts Eq. 4's indicators for UAV `uav` and reports speed and payload violations.
-pub fn safety_term(world: &World, uav: usize, tp: &TimedPath, sink: &mut ViolationSink) -> f64 {
+/// Counts Eq. 4's indicators for UAV `uav` flying `tp` over the plan's `segments`
+/// waypoint segments, and reports speed and payload violations.
+pub fn safety_term(
+    world: &World,
+    uav: usize,
+    tp: &TimedPath,
+    segments: usize,
+    sink: &mut ViolationSink,
+) -> f64 {
     let u = &world.spec.uavs[uav];
     let [vmin, vmax] = u.speed;
-    let segments = tp.abs.len().saturating_sub(1) as f64;
+    let segments = segments as f64;
     let mut j = 0.0;
     let v = tp.speed;
     if tp.length > 0.0 && (v < vmin - 1e-9 || v > vmax + 1e-9) {

@@ -168,6 +168,16 @@ impl World {
         DVec3::from_array(self.spec.uavs[i].start)
     }
 
+    /// Whether plans are assessed as flown, with an arc of each UAV's turning radius
+    /// through every corner and the turning-radius constraint ([`crate::flight`]): under
+    /// the strict profile. The paper profile and SPSO's objective keep the paper's straight
+    /// segments, so the reference cross-checks still hold.
+    #[must_use]
+    pub fn flies_arcs(&self) -> bool {
+        self.spec.planning.profile == crate::feasibility::FeasibilityProfile::Strict
+            && self.spec.objective.preset != spec::ObjectivePreset::Spso
+    }
+
     /// Absolute altitude of a point given as [x, y, z_agl].
     ///
     /// Under SPSO's nearest-cell sampling the sum is rounded to single precision, as MATLAB

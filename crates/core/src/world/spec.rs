@@ -136,8 +136,13 @@ fn default_antenna() -> f64 {
 pub struct UavSpec {
     /// Start [x, y, z above ground], metres ((200, 100, 150) in the paper).
     pub start: [f64; 3],
-    /// Maximum turn angle at a waypoint, degrees (45; turning radius 50 m).
+    /// Maximum turn angle at a waypoint, degrees (45).
     pub max_turn_deg: f64,
+    /// Minimum turning radius R, metres (50, the paper's). Under the strict profile the
+    /// vehicle flies an arc of radius R through each corner, which needs R tan(theta / 2)
+    /// of straight flight on each side of a turn of angle theta; 0 flies the corners
+    /// sharp (docs/model.md, "Turning radius and the flown path").
+    pub turn_radius: f64,
     /// Maximum climb / dive angle of a segment, degrees (45).
     pub max_climb_deg: f64,
     /// Speed range [v_min, v_max], m/s ([5, 25]).
@@ -161,6 +166,7 @@ impl Default for UavSpec {
         Self {
             start: [200.0, 100.0, 150.0],
             max_turn_deg: 45.0,
+            turn_radius: 50.0,
             max_climb_deg: 45.0,
             speed: [5.0, 25.0],
             cruise_speed: 15.0,

@@ -188,6 +188,7 @@ impl ScenarioSpec {
                 return Err(err(f("reserve"), "a fraction in [0, 1)", u.reserve));
             }
             non_negative(&f("size"), u.size)?;
+            non_negative(&f("turn_radius"), u.turn_radius)?;
         }
         let c = &self.communication;
         positive("communication.range", c.range)?;

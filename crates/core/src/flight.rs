@@ -1,0 +1,423 @@
+//! The flown path: what a vehicle with a minimum turning radius flies through a plan's
+//! waypoints, and the turning-radius constraint that makes it exist.
+//!
+//! Why: the paper gives a 50 m turning radius but checks a plan as straight segments with a
+//! turn-angle limit at each waypoint, so two 45 deg turns 3 m apart pass although no
+//! vehicle flies them, and the corner an autopilot cuts is never checked against threats,
+//! terrain or the other UAVs. Here each interior waypoint b (between a and c) is replaced by
+//! the circular arc of radius R tangent to both segments (a fillet, the shortest path of a
+//! vehicle that turns at most 1/R per metre through the corner; Dubins 1957, Am. J. Math.
+//! 79(3):497-516, doi:10.2307/2372560, whose smoothing CCEA-ADVS applies to UAV plans):
+//!
+//! ```text
+//! theta = angle between u1 = (b - a)/|b - a| and u2 = (c - b)/|c - b|  (3-D, in the plane
+//!         of the two segments)
+//! tangent length t = R tan(theta / 2): the arc starts at T1 = b - t u1, ends at T2 = b + t u2
+//! centre C = b + R / cos(theta / 2) * unit(u2 - u1); arc length R theta
+//! ```
+//!
+//! The arcs need room: on every segment the tangent lengths of its two ends must fit,
+//! t_k + t_{k+1} <= L_k (the start and the goal have no turn). The missing metres are a
+//! [`ViolationKind::TurnRadius`] violation. So that a flown path exists even then (to be
+//! assessed and drawn), the tangent lengths of an overfull segment are scaled down to fit,
+//! i.e. those corners are flown on a tighter radius, and the violation says so.
+//!
+//! An arc is flown as chords whose sagitta (the largest gap between chord and arc) is at
+//! most [`SAGITTA_M`]; everything that follows the UAV in time (separation, communication,
+//! energy, speed, clearance, threats) is then assessed on that polyline, exactly as on
+//! straight segments.
+
+use glam::DVec3;
+
+use crate::feasibility::{At, ViolationKind, ViolationSink};
+use crate::timing::TimedPath;
+use crate::world::threat::point_segment_distance;
+use crate::world::World;
+
+/// Largest distance between an arc and the chords that fly it, metres.
+pub const SAGITTA_M: f64 = 0.25;
+
+/// Turns flatter than this (radians) are flown straight through the waypoint.
+const STRAIGHT: f64 = 1e-9;
+
+/// Turns sharper than this (a reversal) get no arc: its centre would be at infinity.
+const REVERSAL: f64 = std::f64::consts::PI - 1e-6;
+
+/// Turn angle (radians, in [0, pi]) at `b` between a->b and b->c; 0 if a segment is empty.
+#[must_use]
+pub fn turn_angle(a: DVec3, b: DVec3, c: DVec3) -> f64 {
+    let (u1, u2) = ((b - a).normalize_or_zero(), (c - b).normalize_or_zero());
+    if u1 == DVec3::ZERO || u2 == DVec3::ZERO {
+        return 0.0;
+    }
+    // atan2 of |cross| and dot is accurate for small and for large angles alike.
+    u1.cross(u2).length().atan2(u1.dot(u2))
+}
+
+/// Straight flight a turn of angle `theta` on radius `radius` needs on each side.
+#[must_use]
+pub fn tangent_length(radius: f64, theta: f64) -> f64 {
+    if theta <= STRAIGHT {
+        0.0
+    } else if theta >= REVERSAL {
+        f64::INFINITY
+    } else {
+        radius * (0.5 * theta).tan()
+    }
+}
+
+/// The fillet of one corner.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Fillet {
+    /// Where the arc leaves the incoming segment and joins the outgoing one.
+    pub enter: DVec3,
+    pub leave: DVec3,
+    /// Centre, radius (metres) and angle (radians) of the arc.
+    pub centre: DVec3,
+    pub radius: f64,
+    pub angle: f64,
+}
+
+impl Fillet {
+    /// The fillet of radius `radius` at corner b of a-b-c, or `None` for a straight or
+    /// reversing corner (or a zero radius).
+    #[must_use]
+    pub fn at(a: DVec3, b: DVec3, c: DVec3, radius: f64) -> Option<Self> {
+        let theta = turn_angle(a, b, c);
+        if radius <= 0.0 || theta <= STRAIGHT || theta >= REVERSAL {
+            return None;
+        }
+        let (u1, u2) = ((b - a).normalize(), (c - b).normalize());
+        let t = tangent_length(radius, theta);
+        let inward = (u2 - u1).normalize_or_zero();
+        Some(Self {
+            enter: b - u1 * t,
+            leave: b + u2 * t,
+            centre: b + inward * (radius / (0.5 * theta).cos()),
+            radius,
+            angle: theta,
+        })
+    }
+
+    /// Arc length R theta.
+    #[must_use]
+    pub fn length(&self) -> f64 {
+        self.radius * self.angle
+    }
+
+    /// The point at arc angle `phi` in [0, angle] from `enter`.
+    #[must_use]
+    pub fn point(&self, phi: f64) -> DVec3 {
+        let e1 = (self.enter - self.centre) / self.radius;
+        let e2 = self.tangent_at_enter();
+        self.centre + (e1 * phi.cos() + e2 * phi.sin()) * self.radius
+    }
+
+    /// Unit direction of flight where the arc starts.
+    fn tangent_at_enter(&self) -> DVec3 {
+        // The incoming direction: perpendicular to the radius at `enter`, towards `leave`.
+        let e1 = (self.enter - self.centre) / self.radius;
+        let to_leave = self.leave - self.enter;
+        (to_leave - e1 * to_leave.dot(e1)).normalize_or_zero()
+    }
+
+    /// Chords that fly the arc with sagitta at most [`SAGITTA_M`].
+    #[must_use]
+    pub fn chords(&self) -> usize {
+        // Sagitta of a chord spanning angle d: R (1 - cos(d / 2)).
+        let cos_half = 1.0 - (SAGITTA_M / self.radius).min(1.0);
+        let max_step = 2.0 * cos_half.acos();
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let n = (self.angle / max_step.max(1e-3)).ceil() as usize;
+        n.clamp(1, 256)
+    }
+}
+
+/// Tangent lengths t_k of each waypoint of `abs` (0 at the start and the goal) for radius
+/// `radius`, into `out`.
+pub fn tangent_lengths(abs: &[DVec3], radius: f64, out: &mut Vec<f64>) {
+    out.clear();
+    out.resize(abs.len(), 0.0);
+    for k in 1..abs.len().saturating_sub(1) {
+        out[k] = tangent_length(radius, turn_angle(abs[k - 1], abs[k], abs[k + 1]));
+    }
+}
+
+/// Reports, for UAV `uav` with waypoints `abs` and turning radius `radius`, every segment
+/// too short for the tangent lengths of its ends. `times[k]` is when waypoint k is reached.
+pub fn check_turn_radius(
+    uav: usize,
+    abs: &[DVec3],
+    times: impl Fn(usize) -> f64,
+    radius: f64,
+    tangents: &mut Vec<f64>,
+    sink: &mut ViolationSink,
+) {
+    if radius <= 0.0 {
+        return;
+    }
+    tangent_lengths(abs, radius, tangents);
+    for k in 0..abs.len().saturating_sub(1) {
+        let need = tangents[k] + tangents[k + 1];
+        let have = abs[k].distance(abs[k + 1]);
+        if need > have + 1e-9 {
+            let missing = if need.is_finite() {
+                need - have
+            } else {
+                radius
+            };
+            sink.add(
+                ViolationKind::TurnRadius,
+                uav,
+                missing,
+                At {
+                    index: Some(k),
+                    position: Some(abs[k].lerp(abs[k + 1], 0.5)),
+                    time: Some(0.5 * (times(k) + times(k + 1))),
+                    ..At::default()
+                },
+                || {
+                    format!(
+                        "segment {k} is {have:.1} m long but its turns need {need:.1} m of straight flight at radius {radius} m"
+                    )
+                },
+            );
+        }
+    }
+}
+
+/// Where each segment of a flown polyline comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct FlownSegment {
+    /// A chord of the arc through a corner (else a straight piece of a waypoint segment).
+    pub arc: bool,
+    /// The waypoint segment it lies on, or for an arc the one it turns out of.
+    pub waypoint_segment: usize,
+}
+
+/// The flown polyline through the waypoints `abs` for turning radius `radius` into `out`,
+/// and where each of its segments comes from into `from`. Overfull segments have their
+/// tangent lengths scaled down to fit (a tighter turn, which [`check_turn_radius`]
+/// reports).
+pub fn flown_polyline(
+    abs: &[DVec3],
+    radius: f64,
+    tangents: &mut Vec<f64>,
+    out: &mut Vec<DVec3>,
+    from: &mut Vec<FlownSegment>,
+) {
+    out.clear();
+    from.clear();
+    let n = abs.len();
+    if n < 3 || radius <= 0.0 {
+        out.extend_from_slice(abs);
+        from.extend((0..n.saturating_sub(1)).map(|k| FlownSegment {
+            arc: false,
+            waypoint_segment: k,
+        }));
+        return;
+    }
+    tangent_lengths(abs, radius, tangents);
+    // Scale of each segment: how much of its ends' tangent lengths fit.
+    let fit = |k: usize| {
+        let need = tangents[k] + tangents[k + 1];
+        let have = abs[k].distance(abs[k + 1]);
+        if need > have {
+            have / need
+        } else {
+            1.0
+        }
+    };
+    out.push(abs[0]);
+    for k in 1..n - 1 {
+        let t = tangents[k] * fit(k - 1).min(fit(k));
+        let theta = turn_angle(abs[k - 1], abs[k], abs[k + 1]);
+        let r = if t.is_finite() && theta > STRAIGHT && theta < REVERSAL {
+            t / (0.5 * theta).tan()
+        } else {
+            0.0
+        };
+        let straight = FlownSegment {
+            arc: false,
+            waypoint_segment: k - 1,
+        };
+        match Fillet::at(abs[k - 1], abs[k], abs[k + 1], r) {
+            Some(f) if f.radius > 1e-9 => {
+                push_point(out, from, f.enter, straight);
+                let chord = FlownSegment {
+                    arc: true,
+                    ..straight
+                };
+                let m = f.chords();
+                for i in 1..m {
+                    push_point(out, from, f.point(f.angle * i as f64 / m as f64), chord);
+                }
+                push_point(out, from, f.leave, chord);
+            }
+            _ => push_point(out, from, abs[k], straight),
+        }
+    }
+    let last = FlownSegment {
+        arc: false,
+        waypoint_segment: n - 2,
+    };
+    push_point(out, from, abs[n - 1], last);
+}
+
+/// Reports every arc chord of UAV `uav`'s flown path `tp` that enters a threat cylinder
+/// (radius r + drone size): a corner the waypoint segments clear can be cut into one. The
+/// straight pieces lie on the waypoint segments, which the threat term checks already.
+pub fn check_arc_threats(world: &World, uav: usize, tp: &TimedPath, sink: &mut ViolationSink) {
+    let size = world.spec.uavs[uav].size;
+    for (s, seg) in tp.flown.iter().enumerate().filter(|(_, f)| f.arc) {
+        let (a, b) = (tp.abs[s], tp.abs[s + 1]);
+        for t in &world.spec.threats {
+            let hard = t.r + size;
+            let d = point_segment_distance((t.x, t.y), (a.x, a.y), (b.x, b.y));
+            if d < hard {
+                sink.add(
+                    ViolationKind::Threat,
+                    uav,
+                    hard - d,
+                    At {
+                        index: Some(seg.waypoint_segment),
+                        position: Some(a.lerp(b, 0.5)),
+                        time: Some(0.5 * (tp.time_at(s) + tp.time_at(s + 1))),
+                        ..At::default()
+                    },
+                    || {
+                        format!(
+                            "the flown arc passes {d:.1} m from the axis of threat ({:.0}, {:.0}, r {:.0}); limit {hard:.1} m",
+                            t.x, t.y, t.r
+                        )
+                    },
+                );
+            }
+        }
+    }
+}
+
+/// Appends `p`, the end of a segment that comes from `seg`, dropping a zero-length one.
+fn push_point(out: &mut Vec<DVec3>, from: &mut Vec<FlownSegment>, p: DVec3, seg: FlownSegment) {
+    if out.last().is_some_and(|q| *q == p) {
+        return;
+    }
+    out.push(p);
+    from.push(seg);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::FRAC_PI_2;
+
+    #[test]
+    fn a_right_angle_has_tangent_length_r_and_arc_length_r_pi_over_2() {
+        let (a, b, c) = (
+            DVec3::new(0.0, 0.0, 100.0),
+            DVec3::new(200.0, 0.0, 100.0),
+            DVec3::new(200.0, 200.0, 100.0),
+        );
+        assert!((turn_angle(a, b, c) - FRAC_PI_2).abs() < 1e-12);
+        let f = Fillet::at(a, b, c, 50.0).unwrap();
+        assert!((f.enter - DVec3::new(150.0, 0.0, 100.0)).length() < 1e-9);
+        assert!((f.leave - DVec3::new(200.0, 50.0, 100.0)).length() < 1e-9);
+        assert!((f.centre - DVec3::new(150.0, 50.0, 100.0)).length() < 1e-9);
+        assert!((f.length() - 50.0 * FRAC_PI_2).abs() < 1e-9);
+        // Every point of the arc is R from the centre, and the arc ends where it should.
+        for i in 0..=10 {
+            let p = f.point(f.angle * f64::from(i) / 10.0);
+            assert!((p.distance(f.centre) - 50.0).abs() < 1e-9);
+        }
+        assert!(f.point(f.angle).distance(f.leave) < 1e-9);
+    }
+
+    #[test]
+    fn a_60_degree_climbing_turn_is_tangent_to_both_segments() {
+        let a = DVec3::new(0.0, 0.0, 0.0);
+        let b = DVec3::new(100.0, 0.0, 30.0);
+        let c = b + DVec3::new(60f64.to_radians().cos(), 60f64.to_radians().sin(), 0.2) * 100.0;
+        let theta = turn_angle(a, b, c);
+        let f = Fillet::at(a, b, c, 40.0).unwrap();
+        let t = 40.0 * (0.5 * theta).tan();
+        assert!((f.enter.distance(b) - t).abs() < 1e-9);
+        assert!((f.leave.distance(b) - t).abs() < 1e-9);
+        // Radius perpendicular to both segments at the tangent points.
+        assert!((f.enter - f.centre).dot(b - a).abs() < 1e-6);
+        assert!((f.leave - f.centre).dot(c - b).abs() < 1e-6);
+        // The chord polyline is within the sagitta of the arc and of the right length.
+        let m = f.chords();
+        let mut len = 0.0;
+        let mut prev = f.enter;
+        for i in 1..=m {
+            let p = f.point(f.angle * i as f64 / m as f64);
+            let mid = (prev + p) * 0.5;
+            assert!(f.radius - mid.distance(f.centre) <= SAGITTA_M + 1e-9);
+            len += p.distance(prev);
+            prev = p;
+        }
+        // Chords of angle d are shorter than their arc by a factor of about 1 - d^2 / 24,
+        // i.e. 1 - sagitta / (3 R).
+        assert!(len < f.length() && len > f.length() * (1.0 - SAGITTA_M / f.radius));
+    }
+
+    #[test]
+    fn two_sharp_turns_three_metres_apart_break_the_turning_radius() {
+        let abs = [
+            DVec3::new(0.0, 0.0, 100.0),
+            DVec3::new(100.0, 0.0, 100.0),
+            DVec3::new(102.1, 2.1, 100.0),   // 3 m on, 45 deg left
+            DVec3::new(102.1, 102.1, 100.0), // 45 deg left again
+        ];
+        let mut sink = ViolationSink::collecting(crate::feasibility::FeasibilityProfile::Strict);
+        let mut t = Vec::new();
+        check_turn_radius(0, &abs, |k| k as f64, 50.0, &mut t, &mut sink);
+        let list = sink.list.unwrap();
+        assert_eq!(list.len(), 1);
+        assert_eq!(list[0].kind, ViolationKind::TurnRadius);
+        assert_eq!(list[0].index, Some(1));
+        // Each 45 deg turn needs 50 tan(22.5 deg) = 20.7 m; the segment has 2.97 m.
+        let need = 2.0 * 50.0 * (22.5f64).to_radians().tan();
+        assert!((list[0].amount - (need - abs[1].distance(abs[2]))).abs() < 1e-9);
+        // A wide spacing is fine.
+        let mut ok = ViolationSink::collecting(crate::feasibility::FeasibilityProfile::Strict);
+        let wide = [
+            abs[0],
+            abs[1],
+            DVec3::new(170.0, 70.0, 100.0),
+            DVec3::new(170.0, 170.0, 100.0),
+        ];
+        check_turn_radius(0, &wide, |k| k as f64, 50.0, &mut t, &mut ok);
+        assert!(ok.list.unwrap().is_empty());
+    }
+
+    #[test]
+    fn the_flown_polyline_cuts_the_corner_and_keeps_the_ends() {
+        let abs = [
+            DVec3::new(0.0, 0.0, 100.0),
+            DVec3::new(200.0, 0.0, 100.0),
+            DVec3::new(200.0, 200.0, 100.0),
+        ];
+        let (mut t, mut out, mut from) = (Vec::new(), Vec::new(), Vec::new());
+        flown_polyline(&abs, 50.0, &mut t, &mut out, &mut from);
+        assert_eq!(out[0], abs[0]);
+        assert_eq!(*out.last().unwrap(), abs[2]);
+        assert_eq!(from.len(), out.len() - 1);
+        let last = from[from.len() - 1];
+        assert!(!from[0].arc && !last.arc && from[1].arc);
+        assert_eq!((from[0].waypoint_segment, last.waypoint_segment), (0, 1));
+        let len: f64 = out.windows(2).map(|w| w[0].distance(w[1])).sum();
+        let exact = 150.0 + 150.0 + 50.0 * FRAC_PI_2;
+        let arc_deficit = 50.0 * FRAC_PI_2 * SAGITTA_M / 50.0;
+        assert!(len < exact && len > exact - arc_deficit, "{len} vs {exact}");
+        // The corner itself is not flown: the path stays R (sqrt 2 - 1) inside it.
+        let nearest = out
+            .iter()
+            .map(|p| p.distance(abs[1]))
+            .fold(f64::INFINITY, f64::min);
+        assert!((nearest - 50.0 * (2f64.sqrt() - 1.0)).abs() < SAGITTA_M + 1e-6);
+        // Radius 0: the waypoints themselves.
+        flown_polyline(&abs, 0.0, &mut t, &mut out, &mut from);
+        assert_eq!(out, abs);
+    }
+}
