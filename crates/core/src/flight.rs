@@ -35,13 +35,56 @@ use crate::world::threat::point_segment_distance;
 use crate::world::World;
 
 /// Largest distance between an arc and the chords that fly it, metres.
-pub const SAGITTA_M: f64 = 0.25;
+pub const SAGITTA_M: f64 = 0.5;
 
-/// Turns flatter than this (radians) are flown straight through the waypoint.
+/// Turns whose sine is below this are flown straight through the waypoint.
 const STRAIGHT: f64 = 1e-9;
 
-/// Turns sharper than this (a reversal) get no arc: its centre would be at infinity.
-const REVERSAL: f64 = std::f64::consts::PI - 1e-6;
+/// Turns with 1 + cos(theta) below this (a reversal) get no arc: its centre would be at
+/// infinity, and the tangent length is infinite.
+const REVERSAL: f64 = 1e-12;
+
+/// The turn at a corner: unit directions in and out and the half-angle's tangent and
+/// cosine, from the half-angle identities tan(theta/2) = sin / (1 + cos) and
+/// cos(theta/2) = sqrt((1 + cos) / 2), so the hot path needs no trigonometric call.
+#[derive(Debug, Clone, Copy)]
+struct Corner {
+    u1: DVec3,
+    u2: DVec3,
+    tan_half: f64,
+    cos_half: f64,
+}
+
+impl Corner {
+    /// The turn at b of a-b-c; `None` when straight or when a segment is empty.
+    fn at(a: DVec3, b: DVec3, c: DVec3) -> Option<Self> {
+        let (u1, u2) = ((b - a).normalize_or_zero(), (c - b).normalize_or_zero());
+        if u1 == DVec3::ZERO || u2 == DVec3::ZERO {
+            return None;
+        }
+        let cos = u1.dot(u2).clamp(-1.0, 1.0);
+        let sin = u1.cross(u2).length();
+        if sin <= STRAIGHT && cos > 0.0 {
+            return None;
+        }
+        let one_plus = 1.0 + cos;
+        let (tan_half, cos_half) = if one_plus <= REVERSAL {
+            (f64::INFINITY, 0.0)
+        } else {
+            (sin / one_plus, (0.5 * one_plus).sqrt())
+        };
+        Some(Self {
+            u1,
+            u2,
+            tan_half,
+            cos_half,
+        })
+    }
+
+    fn angle(&self) -> f64 {
+        2.0 * self.tan_half.atan()
+    }
+}
 
 /// Turn angle (radians, in [0, pi]) at `b` between a->b and b->c; 0 if a segment is empty.
 #[must_use]
@@ -57,9 +100,7 @@ pub fn turn_angle(a: DVec3, b: DVec3, c: DVec3) -> f64 {
 /// Straight flight a turn of angle `theta` on radius `radius` needs on each side.
 #[must_use]
 pub fn tangent_length(radius: f64, theta: f64) -> f64 {
-    if theta <= STRAIGHT {
-        0.0
-    } else if theta >= REVERSAL {
+    if theta >= std::f64::consts::PI {
         f64::INFINITY
     } else {
         radius * (0.5 * theta).tan()
@@ -76,6 +117,8 @@ pub struct Fillet {
     pub centre: DVec3,
     pub radius: f64,
     pub angle: f64,
+    /// Direction of flight into the corner (the arc's tangent at `enter`).
+    pub heading_in: DVec3,
 }
 
 impl Fillet {
@@ -83,19 +126,22 @@ impl Fillet {
     /// reversing corner (or a zero radius).
     #[must_use]
     pub fn at(a: DVec3, b: DVec3, c: DVec3, radius: f64) -> Option<Self> {
-        let theta = turn_angle(a, b, c);
-        if radius <= 0.0 || theta <= STRAIGHT || theta >= REVERSAL {
+        Self::of(b, &Corner::at(a, b, c)?, radius)
+    }
+
+    fn of(b: DVec3, corner: &Corner, radius: f64) -> Option<Self> {
+        if radius <= 0.0 || !corner.tan_half.is_finite() {
             return None;
         }
-        let (u1, u2) = ((b - a).normalize(), (c - b).normalize());
-        let t = tangent_length(radius, theta);
-        let inward = (u2 - u1).normalize_or_zero();
+        let t = radius * corner.tan_half;
+        let inward = (corner.u2 - corner.u1).normalize_or_zero();
         Some(Self {
-            enter: b - u1 * t,
-            leave: b + u2 * t,
-            centre: b + inward * (radius / (0.5 * theta).cos()),
+            enter: b - corner.u1 * t,
+            leave: b + corner.u2 * t,
+            centre: b + inward * (radius / corner.cos_half),
             radius,
-            angle: theta,
+            angle: corner.angle(),
+            heading_in: corner.u1,
         })
     }
 
@@ -109,16 +155,7 @@ impl Fillet {
     #[must_use]
     pub fn point(&self, phi: f64) -> DVec3 {
         let e1 = (self.enter - self.centre) / self.radius;
-        let e2 = self.tangent_at_enter();
-        self.centre + (e1 * phi.cos() + e2 * phi.sin()) * self.radius
-    }
-
-    /// Unit direction of flight where the arc starts.
-    fn tangent_at_enter(&self) -> DVec3 {
-        // The incoming direction: perpendicular to the radius at `enter`, towards `leave`.
-        let e1 = (self.enter - self.centre) / self.radius;
-        let to_leave = self.leave - self.enter;
-        (to_leave - e1 * to_leave.dot(e1)).normalize_or_zero()
+        self.centre + (e1 * phi.cos() + self.heading_in * phi.sin()) * self.radius
     }
 
     /// Chords that fly the arc with sagitta at most [`SAGITTA_M`].
@@ -131,6 +168,21 @@ impl Fillet {
         let n = (self.angle / max_step.max(1e-3)).ceil() as usize;
         n.clamp(1, 256)
     }
+
+    /// Appends the ends of the arc's chords (not `enter`, but `leave`) to `out`, each as a
+    /// segment from `seg`; one sine and cosine per arc (the chord points by rotation).
+    fn push_chords(&self, out: &mut Vec<DVec3>, from: &mut Vec<FlownSegment>, seg: FlownSegment) {
+        let m = self.chords();
+        let (s, c) = (self.angle / m as f64).sin_cos();
+        let e1 = (self.enter - self.centre) / self.radius;
+        let (mut cos_i, mut sin_i) = (1.0, 0.0);
+        for _ in 1..m {
+            (cos_i, sin_i) = (cos_i * c - sin_i * s, sin_i * c + cos_i * s);
+            let p = self.centre + (e1 * cos_i + self.heading_in * sin_i) * self.radius;
+            push_point(out, from, p, seg);
+        }
+        push_point(out, from, self.leave, seg);
+    }
 }
 
 /// Tangent lengths t_k of each waypoint of `abs` (0 at the start and the goal) for radius
@@ -139,24 +191,26 @@ pub fn tangent_lengths(abs: &[DVec3], radius: f64, out: &mut Vec<f64>) {
     out.clear();
     out.resize(abs.len(), 0.0);
     for k in 1..abs.len().saturating_sub(1) {
-        out[k] = tangent_length(radius, turn_angle(abs[k - 1], abs[k], abs[k + 1]));
+        if let Some(c) = Corner::at(abs[k - 1], abs[k], abs[k + 1]) {
+            out[k] = radius * c.tan_half;
+        }
     }
 }
 
-/// Reports, for UAV `uav` with waypoints `abs` and turning radius `radius`, every segment
-/// too short for the tangent lengths of its ends. `times[k]` is when waypoint k is reached.
+/// Reports, for UAV `uav` with waypoints `abs`, turning radius `radius` and the tangent
+/// lengths `tangents` of its corners ([`tangent_lengths`]), every segment too short for
+/// the tangent lengths of its ends. `times(k)` is when waypoint k is reached.
 pub fn check_turn_radius(
     uav: usize,
     abs: &[DVec3],
     times: impl Fn(usize) -> f64,
     radius: f64,
-    tangents: &mut Vec<f64>,
+    tangents: &[f64],
     sink: &mut ViolationSink,
 ) {
-    if radius <= 0.0 {
+    if radius <= 0.0 || tangents.len() != abs.len() {
         return;
     }
-    tangent_lengths(abs, radius, tangents);
     for k in 0..abs.len().saturating_sub(1) {
         let need = tangents[k] + tangents[k + 1];
         let have = abs[k].distance(abs[k + 1]);
@@ -210,6 +264,8 @@ pub fn flown_polyline(
     from.clear();
     let n = abs.len();
     if n < 3 || radius <= 0.0 {
+        tangents.clear();
+        tangents.resize(n, 0.0);
         out.extend_from_slice(abs);
         from.extend((0..n.saturating_sub(1)).map(|k| FlownSegment {
             arc: false,
@@ -230,29 +286,23 @@ pub fn flown_polyline(
     };
     out.push(abs[0]);
     for k in 1..n - 1 {
-        let t = tangents[k] * fit(k - 1).min(fit(k));
-        let theta = turn_angle(abs[k - 1], abs[k], abs[k + 1]);
-        let r = if t.is_finite() && theta > STRAIGHT && theta < REVERSAL {
-            t / (0.5 * theta).tan()
-        } else {
-            0.0
-        };
         let straight = FlownSegment {
             arc: false,
             waypoint_segment: k - 1,
         };
-        match Fillet::at(abs[k - 1], abs[k], abs[k + 1], r) {
+        let fillet = Corner::at(abs[k - 1], abs[k], abs[k + 1]).and_then(|c| {
+            // An overfull segment's corners are flown on the radius that fits.
+            let scale = fit(k - 1).min(fit(k));
+            Fillet::of(abs[k], &c, radius * scale)
+        });
+        match fillet {
             Some(f) if f.radius > 1e-9 => {
                 push_point(out, from, f.enter, straight);
                 let chord = FlownSegment {
                     arc: true,
                     ..straight
                 };
-                let m = f.chords();
-                for i in 1..m {
-                    push_point(out, from, f.point(f.angle * i as f64 / m as f64), chord);
-                }
-                push_point(out, from, f.leave, chord);
+                f.push_chords(out, from, chord);
             }
             _ => push_point(out, from, abs[k], straight),
         }
@@ -273,6 +323,13 @@ pub fn check_arc_threats(world: &World, uav: usize, tp: &TimedPath, sink: &mut V
         let (a, b) = (tp.abs[s], tp.abs[s + 1]);
         for t in &world.spec.threats {
             let hard = t.r + size;
+            if a.x.min(b.x) > t.x + hard
+                || a.x.max(b.x) < t.x - hard
+                || a.y.min(b.y) > t.y + hard
+                || a.y.max(b.y) < t.y - hard
+            {
+                continue;
+            }
             let d = point_segment_distance((t.x, t.y), (a.x, a.y), (b.x, b.y));
             if d < hard {
                 sink.add(
@@ -371,7 +428,8 @@ mod tests {
         ];
         let mut sink = ViolationSink::collecting(crate::feasibility::FeasibilityProfile::Strict);
         let mut t = Vec::new();
-        check_turn_radius(0, &abs, |k| k as f64, 50.0, &mut t, &mut sink);
+        tangent_lengths(&abs, 50.0, &mut t);
+        check_turn_radius(0, &abs, |k| k as f64, 50.0, &t, &mut sink);
         let list = sink.list.unwrap();
         assert_eq!(list.len(), 1);
         assert_eq!(list[0].kind, ViolationKind::TurnRadius);
@@ -387,7 +445,8 @@ mod tests {
             DVec3::new(170.0, 70.0, 100.0),
             DVec3::new(170.0, 170.0, 100.0),
         ];
-        check_turn_radius(0, &wide, |k| k as f64, 50.0, &mut t, &mut ok);
+        tangent_lengths(&wide, 50.0, &mut t);
+        check_turn_radius(0, &wide, |k| k as f64, 50.0, &t, &mut ok);
         assert!(ok.list.unwrap().is_empty());
     }
 

@@ -33,6 +33,8 @@ pub struct TimedPath {
     /// Of a flown path ([`TimedPlan::fill_flown`]): where each segment comes from (an arc
     /// chord or a straight piece, of which waypoint segment). Empty for a waypoint path.
     pub flown: Vec<crate::flight::FlownSegment>,
+    /// Of a flown path: the tangent length R tan(theta / 2) of each waypoint's turn.
+    pub tangents: Vec<f64>,
 }
 
 impl TimedPath {
@@ -56,6 +58,40 @@ impl TimedPath {
     #[must_use]
     pub fn waypoint_segment(&self, s: usize) -> usize {
         self.flown.get(s).map_or(s, |f| f.waypoint_segment)
+    }
+
+    /// When this path passes each of the plan's `waypoints` waypoints: for a flown path
+    /// the middle of the arc through a corner (or the corner itself when it is flown
+    /// straight), for a waypoint path [`TimedPath::time_at`].
+    #[must_use]
+    pub fn waypoint_times(&self, waypoints: usize) -> Vec<f64> {
+        if self.flown.is_empty() || waypoints < 2 {
+            return (0..waypoints)
+                .map(|k| self.time_at(k.min(self.abs.len().saturating_sub(1))))
+                .collect();
+        }
+        let mut times = vec![0.0; waypoints];
+        times[waypoints - 1] = self.arrival;
+        let mut arc_span: Vec<Option<(f64, f64)>> = vec![None; waypoints];
+        let mut first_vertex: Vec<Option<f64>> = vec![None; waypoints];
+        for (s, f) in self.flown.iter().enumerate() {
+            let (t0, t1) = (self.time_at(s), self.time_at(s + 1));
+            if f.arc {
+                let k = f.waypoint_segment + 1;
+                let span = arc_span[k].get_or_insert((t0, t1));
+                span.1 = t1;
+            } else {
+                first_vertex[f.waypoint_segment].get_or_insert(t0);
+            }
+        }
+        for k in 1..waypoints - 1 {
+            times[k] = match (arc_span[k], first_vertex[k]) {
+                (Some((t0, t1)), _) => 0.5 * (t0 + t1),
+                (None, Some(t)) => t,
+                (None, None) => times[k - 1],
+            };
+        }
+        times
     }
 
     /// Recomputes the arc lengths of `abs`.
@@ -138,26 +174,40 @@ impl TimedPlan {
         for (tp, path) in self.paths.iter_mut().zip(&plan.uavs) {
             tp.fill_geometry(world, path);
             tp.flown.clear();
+            tp.tangents.clear();
         }
         self.schedule(world);
     }
 
     /// The flown trajectory of `waypoints` (an arc of each UAV's turning radius through
     /// every corner, [`crate::flight`]), timed by the same policy on its own lengths.
-    pub fn fill_flown(&mut self, world: &World, waypoints: &TimedPlan, tangents: &mut Vec<f64>) {
+    pub fn fill_flown(&mut self, world: &World, waypoints: &TimedPlan) {
         let n = waypoints.paths.len();
         self.paths.resize_with(n, TimedPath::default);
         for (u, (tp, wp)) in self.paths.iter_mut().zip(&waypoints.paths).enumerate() {
             crate::flight::flown_polyline(
                 &wp.abs,
                 world.spec.uavs[u].turn_radius,
-                tangents,
+                &mut tp.tangents,
                 &mut tp.abs,
                 &mut tp.flown,
             );
             tp.fill_lengths();
         }
         self.schedule(world);
+    }
+
+    /// What is flown and assessed: the flown path when the world flies arcs
+    /// ([`World::flies_arcs`]), else the waypoint polyline (for figures, reports, exports).
+    #[must_use]
+    pub fn flown(world: &World, plan: &Plan) -> Self {
+        let waypoints = Self::new(world, plan);
+        if !world.flies_arcs() {
+            return waypoints;
+        }
+        let mut flown = Self::default();
+        flown.fill_flown(world, &waypoints);
+        flown
     }
 
     /// Speeds, arrivals and the horizon from the paths' lengths under the timing policy.
@@ -264,6 +314,7 @@ mod tests {
             speed: 2.0,
             arrival: 10.0,
             flown: Vec::new(),
+            tangents: Vec::new(),
         };
         assert!(tp.position_at_time(2.5).distance(DVec3::new(5.0, 0.0, 0.0)) < 1e-12);
         assert!(

@@ -331,3 +331,109 @@ fn flying_out_of_range_costs_and_violates_outage() {
     assert!(a.per_uav[0].raw[TermId::Communication] > 0.0);
     assert!(kinds(&w, &plan).contains(&ViolationKind::Comm));
 }
+
+/// A path from (100, 100) east to `corner`, then turning left by each of `turns_deg` and
+/// flying the matching leg of `legs`, with the goal at its end (flat ground, 150 m up).
+fn bent(corner: [f64; 2], turns_deg: &[f64], legs: &[f64]) -> (ScenarioSpec, Plan) {
+    let mut points = vec![[100.0, 100.0, 150.0], [corner[0], corner[1], 150.0]];
+    let mut heading = 0.0_f64;
+    for (turn, leg) in turns_deg.iter().zip(legs) {
+        heading += turn.to_radians();
+        let [x, y, _] = *points.last().unwrap();
+        points.push([x + leg * heading.cos(), y + leg * heading.sin(), 150.0]);
+    }
+    let mut s = spec(&[[100.0, 100.0, 150.0]]);
+    s.goal.position = *points.last().unwrap();
+    (
+        s,
+        Plan {
+            uavs: vec![path(&points)],
+        },
+    )
+}
+
+#[test]
+fn two_forty_degree_turns_three_metres_apart_break_the_turning_radius() {
+    // Each turn needs 50 tan(20 deg) = 18.2 m of straight flight on each side; 3 m separate
+    // them. Both are within the 45 deg turn limit, so the paper's model passes the plan.
+    let (s, plan) = bent([500.0, 100.0], &[40.0, 40.0], &[3.0, 700.0]);
+    let w = World::new(s.clone(), flat()).unwrap();
+    let v = check(&w, &plan);
+    let radius: Vec<_> = v
+        .iter()
+        .filter(|v| v.kind == ViolationKind::TurnRadius)
+        .collect();
+    assert_eq!(radius.len(), 1, "{v:?}");
+    assert_eq!(radius[0].index, Some(1));
+    let need = 2.0 * 50.0 * 20f64.to_radians().tan();
+    assert!((radius[0].amount - (need - 3.0)).abs() < 1e-6);
+    assert!(!v.iter().any(|v| v.kind == ViolationKind::Turn), "{v:?}");
+    // The paper profile keeps the paper's model: no turning radius.
+    let mut paper = s.clone();
+    paper.planning.profile = swarmplan_core::feasibility::FeasibilityProfile::Paper;
+    let w = World::new(paper, flat()).unwrap();
+    assert!(assess(&w, &plan, true).feasible(), "{:?}", check(&w, &plan));
+    // Spaced 60 m apart the turns fit.
+    let (s, plan) = bent([500.0, 100.0], &[40.0, 40.0], &[60.0, 700.0]);
+    let w = World::new(s, flat()).unwrap();
+    assert!(assess(&w, &plan, true).feasible(), "{:?}", check(&w, &plan));
+}
+
+#[test]
+fn a_threat_that_only_the_cut_corner_enters_is_caught_on_the_flown_path() {
+    // A 40 deg left turn at (500, 100). The arc of radius 50 m passes 50 (1 / cos 20 deg - 1)
+    // = 3.2 m inside the corner; a threat of radius 5 m (hard zone 6 m with the drone's size)
+    // 8 m in along the bisector is 8 sin 70 deg = 7.5 m from both waypoint segments.
+    let (mut s, plan) = bent([500.0, 100.0], &[40.0], &[600.0]);
+    let inward = 110f64.to_radians();
+    s.threats = vec![Threat {
+        x: 500.0 + 8.0 * inward.cos(),
+        y: 100.0 + 8.0 * inward.sin(),
+        z: 150.0,
+        r: 5.0,
+    }];
+    let w = World::new(s.clone(), flat()).unwrap();
+    let v = check(&w, &plan);
+    let hit: Vec<_> = v
+        .iter()
+        .filter(|v| v.kind == ViolationKind::Threat)
+        .collect();
+    assert!(!hit.is_empty(), "{v:?}");
+    assert!(
+        hit.iter().all(|h| h.detail.contains("flown arc")),
+        "{hit:?}"
+    );
+    // The arc comes within 8 - 3.2 = 4.8 m of the axis (chords a little closer).
+    let deepest = hit.iter().map(|h| h.amount).fold(0.0, f64::max);
+    let arc_gap = 8.0 - 50.0 * (1.0 / 20f64.to_radians().cos() - 1.0);
+    assert!(
+        deepest >= 6.0 - arc_gap - 1e-9 && deepest < 6.0 - arc_gap + 0.5,
+        "{deepest}"
+    );
+    // Flown sharp (radius 0) the corner clears the threat.
+    for u in &mut s.uavs {
+        u.turn_radius = 0.0;
+    }
+    let w = World::new(s, flat()).unwrap();
+    assert!(assess(&w, &plan, true).feasible(), "{:?}", check(&w, &plan));
+}
+
+#[test]
+fn the_flown_path_is_shorter_than_the_waypoints_by_the_cut_corners() {
+    // One 40 deg turn: the arc replaces 2 t of corner by R theta.
+    let (s, plan) = bent([500.0, 100.0], &[40.0], &[600.0]);
+    let w = World::new(s, flat()).unwrap();
+    let a = assess(&w, &plan, true);
+    let theta = 40f64.to_radians();
+    let t = 50.0 * (0.5 * theta).tan();
+    let want = 400.0 + 600.0 - 2.0 * t + 50.0 * theta;
+    // Chords of sagitta <= 0.5 m fly the arc a little shorter than the arc itself.
+    let chords_short = 50.0 * theta * swarmplan_core::flight::SAGITTA_M / 50.0;
+    assert!(
+        a.per_uav[0].length_m <= want && a.per_uav[0].length_m > want - chords_short,
+        "{} vs {want}",
+        a.per_uav[0].length_m
+    );
+    // The waypoint length (J1, SPSO's term) is unchanged.
+    assert!((a.per_uav[0].raw[TermId::Length] - 1000.0).abs() < 1e-9);
+}

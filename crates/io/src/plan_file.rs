@@ -243,16 +243,18 @@ pub fn parse_plan(
 #[must_use]
 pub fn plan_file(world: &World, plan: &Plan) -> PlanFile {
     let timed = TimedPlan::new(world, plan);
+    // Times and speeds are those of the flown path (the middle of each corner's arc).
+    let flown = TimedPlan::flown(world, plan);
     let uavs = plan
         .uavs
         .iter()
-        .zip(&timed.paths)
-        .map(|(p, tp)| {
+        .zip(timed.paths.iter().zip(&flown.paths))
+        .map(|(p, (tp, fp))| {
             let m = p.waypoints.len();
             UavEntry {
                 waypoints: p.waypoints.iter().map(|w| w.to_array()).collect(),
-                time_s: (0..m).map(|k| tp.time_at(k)).collect(),
-                speed_mps: vec![tp.speed; m],
+                time_s: fp.waypoint_times(m),
+                speed_mps: vec![fp.speed; m],
                 altitude_abs_m: tp.abs.iter().map(|a| a.z).collect(),
                 altitude_agl_m: p.waypoints.iter().map(|w| w.z).collect(),
             }

@@ -147,7 +147,8 @@ fn qgc_plan_files_follow_the_documented_format_and_the_plan() {
             "uav1.waypoints",
             "mission.geojson",
             "mission.kml",
-            "mission.csv"
+            "mission.csv",
+            "trajectory.csv"
         ]
     );
     let mission = Mission::new(&world, &plan, &frame()).unwrap();
@@ -180,6 +181,19 @@ fn qgc_plan_files_follow_the_documented_format_and_the_plan() {
             assert_eq!(p[4], pt.geo.lat_deg);
             assert_eq!(p[5], pt.geo.lon_deg);
             assert_eq!(p[6], pt.geo.alt_m);
+            // Acceptance radius: the tangent length of the turn (none at the ends).
+            assert_eq!(p[1], pt.acceptance_m);
+            let abs = |k: usize| {
+                let w = path.points[k].local;
+                glam::DVec3::new(w.x, w.y, world.terrain.height(w.x, w.y) + w.z)
+            };
+            let want = if k == 0 || k + 1 == path.points.len() {
+                0.0
+            } else {
+                let theta = swarmplan_core::flight::turn_angle(abs(k - 1), abs(k), abs(k + 1));
+                swarmplan_core::flight::tangent_length(path.turn_radius_m, theta)
+            };
+            assert!((pt.acceptance_m - want).abs() < 1e-6 * want.max(1.0), "{k}");
             // Altitude AMSL = terrain + AGL + the origin's altitude offset.
             let want = world.terrain.height(pt.local.x, pt.local.y) + pt.local.z + ORIGIN.alt_m;
             assert!((pt.geo.alt_m - want).abs() < 1e-9);
@@ -238,7 +252,8 @@ fn wpl_and_geojson_read_with_pymavlink_and_geojson() {
                 0,
                 pt.geo.lat_deg,
                 pt.geo.lon_deg,
-                pt.geo.alt_m
+                pt.geo.alt_m,
+                pt.acceptance_m
             ]));
         }
         items.push(serde_json::json!([
@@ -250,7 +265,7 @@ fn wpl_and_geojson_read_with_pymavlink_and_geojson() {
         ]));
         wpl.push(serde_json::json!({"file": name, "items": items}));
     }
-    let n_features = 2 * mission.paths.len() + 1 + mission.threats.len();
+    let n_features = 3 * mission.paths.len() + 1 + mission.threats.len();
     let expected = serde_json::json!({
         "wpl": wpl,
         "geojson": {"file": "mission.geojson", "features": n_features},
@@ -349,7 +364,7 @@ fn kml_and_csv_state_their_altitude_reference() {
     assert!(comment.starts_with("# ") && comment.contains("above mean sea level"));
     assert_eq!(
         lines.next(),
-        Some("uav,waypoint,time_s,lat_deg,lon_deg,alt_amsl_m,alt_agl_m,speed_mps")
+        Some("uav,waypoint,time_s,lat_deg,lon_deg,alt_amsl_m,alt_agl_m,speed_mps,acceptance_m")
     );
     let rows = lines.count();
     assert_eq!(
@@ -443,4 +458,76 @@ fn without_an_origin_exports_are_refused_with_a_way_out() {
     assert!(e.contains("[geo] origin = [lat, lon, alt]"), "{e}");
     assert!(e.contains("--origin LAT,LON"), "{e}");
     assert!(e.contains("procedural"), "{e}");
+}
+
+/// trajectory.csv is the flown path that was assessed: read back into the local frame, its
+/// vertices, times and length are those of the assessment, its arcs cut every corner, and
+/// it is flown at the assessed speed.
+#[test]
+fn the_exported_trajectory_is_the_assessed_flown_path() {
+    use swarmplan_core::timing::TimedPlan;
+    let world = tiny();
+    assert!(
+        world.flies_arcs(),
+        "tiny is strict: plans are assessed as flown"
+    );
+    let plan = planned(&world);
+    let report = assess(&world, &plan, false);
+    let waypoints = TimedPlan::new(&world, &plan);
+    let mut flown = TimedPlan::default();
+    flown.fill_flown(&world, &waypoints);
+    let dir = tempfile::tempdir().unwrap();
+    export_plan(&world, &plan, &frame(), ExportFormat::Csv, dir.path()).unwrap();
+    let text = std::fs::read_to_string(dir.path().join("trajectory.csv")).unwrap();
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    assert_eq!(
+        lines.next(),
+        Some("uav,index,time_s,lat_deg,lon_deg,alt_amsl_m,alt_agl_m,on_arc")
+    );
+    let mut by_uav: Vec<Vec<(f64, glam::DVec3, bool)>> = vec![Vec::new(); world.uav_count()];
+    for l in lines {
+        let f: Vec<&str> = l.split(',').collect();
+        let num = |k: usize| f[k].parse::<f64>().unwrap();
+        let local = frame()
+            .from_geodetic(Geodetic::new(num(3), num(4), num(5)))
+            .unwrap();
+        by_uav[f[0].parse::<usize>().unwrap()].push((num(2), local, f[7] == "1"));
+    }
+    for (u, rows) in by_uav.iter().enumerate() {
+        let fp = &flown.paths[u];
+        assert_eq!(rows.len(), fp.abs.len(), "uav {u}");
+        assert!(
+            rows.len() > plan.uavs[u].waypoints.len(),
+            "uav {u}: arcs add vertices"
+        );
+        let mut length = 0.0;
+        for (k, (t, p, _)) in rows.iter().enumerate() {
+            assert!(p.distance(fp.abs[k]) < 1e-6, "uav {u} vertex {k}");
+            assert!((t - fp.time_at(k)).abs() < 1e-9, "uav {u} vertex {k}");
+            if k > 0 {
+                length += p.distance(rows[k - 1].1);
+            }
+        }
+        let r = &report.per_uav[u];
+        assert!((length - r.length_m).abs() < 1e-5, "uav {u}");
+        assert!(
+            (rows[rows.len() - 1].0 - r.arrival_s).abs() < 1e-9,
+            "uav {u}"
+        );
+        assert!(
+            rows.iter().any(|r| r.2),
+            "uav {u}: some vertices are on arcs"
+        );
+        // The flown path never passes through an interior waypoint it turns at.
+        let wps = &waypoints.paths[u].abs;
+        for k in 1..wps.len() - 1 {
+            if fp.tangents[k] > 1.0 {
+                let nearest = rows
+                    .iter()
+                    .map(|r| r.1.distance(wps[k]))
+                    .fold(f64::INFINITY, f64::min);
+                assert!(nearest > 1e-3, "uav {u}: corner {k} is cut");
+            }
+        }
+    }
 }

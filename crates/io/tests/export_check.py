@@ -38,7 +38,9 @@ def check_wpl(directory, spec, mavwp):
     if count != len(expected):
         return [f"{spec['file']}: pymavlink read {count} items, expected {len(expected)}"]
     errors = []
-    for k, (w, (command, frame, lat, lon, alt)) in enumerate(zip(loader.wpoints, expected)):
+    for k, (w, item) in enumerate(zip(loader.wpoints, expected)):
+        command, frame, lat, lon, alt = item[:5]
+        acceptance = item[5] if len(item) > 5 else None
         where = f"{spec['file']} item {k}"
         if w.command != command or w.frame != frame:
             errors.append(
@@ -48,6 +50,8 @@ def check_wpl(directory, spec, mavwp):
             errors.append(f"{where}: lat/lon {w.x}, {w.y}, expected {lat}, {lon}")
         if abs(w.z - alt) > ALT_TOL:
             errors.append(f"{where}: altitude {w.z}, expected {alt}")
+        if acceptance is not None and abs(w.param2 - acceptance) > ALT_TOL:
+            errors.append(f"{where}: acceptance radius {w.param2}, expected {acceptance}")
     return errors
 
 

@@ -30,7 +30,8 @@ pub(crate) struct Run {
 
 impl ContactTrace {
     pub(crate) fn new(world: &World, plan: &Plan) -> Self {
-        let timed = TimedPlan::new(world, plan);
+        // Where the UAVs are when: what is flown, as the assessment sees it.
+        let timed = TimedPlan::flown(world, plan);
         let dt = world.channel.step();
         let steps = if timed.horizon.is_finite() && dt > 0.0 {
             (timed.horizon / dt).ceil() as usize

@@ -12,6 +12,7 @@ use plotters::element::BitMapElement;
 use plotters::prelude::*;
 use swarmplan_core::cost::comm::Contact;
 use swarmplan_core::plan::Plan;
+use swarmplan_core::timing::TimedPlan;
 use swarmplan_core::world::World;
 
 use crate::axis::{format_value, Axis};
@@ -341,13 +342,17 @@ impl Figure for TopView<'_> {
             )))?;
         }
 
-        for (i, path) in self.plan.uavs.iter().enumerate() {
+        // The line is what is flown (arcs through the corners under the strict profile),
+        // the dots are the waypoints.
+        let flown = TimedPlan::flown(self.world, self.plan);
+        for (i, (path, f)) in self.plan.uavs.iter().zip(&flown.paths).enumerate() {
             let c = style::uav_colour(i);
-            let pts: Vec<(f64, f64)> = path.waypoints.iter().map(|p| (p.x, p.y)).collect();
+            let line: Vec<(f64, f64)> = f.abs.iter().map(|p| (p.x, p.y)).collect();
             chart.draw_series(std::iter::once(PathElement::new(
-                pts.clone(),
+                line,
                 c.stroke_width(s.px(3.0)),
             )))?;
+            let pts: Vec<(f64, f64)> = path.waypoints.iter().map(|p| (p.x, p.y)).collect();
             chart.draw_series(pts.iter().map(|p| Circle::new(*p, s.px(4.5), c.filled())))?;
         }
 

@@ -43,7 +43,9 @@ struct View3d<'a> {
     world: &'a World,
     plan: &'a Plan,
     title: &'a str,
+    /// The waypoints (markers) and what is flown (lines, shadows).
     timed: TimedPlan,
+    flown: TimedPlan,
     marks: ViolationMarks,
     x: (f64, f64),
     y: (f64, f64),
@@ -56,6 +58,7 @@ impl<'a> View3d<'a> {
         let m = &world.spec.map;
         let (mut x, mut y) = ((m.x[0], m.x[1]), (m.y[0], m.y[1]));
         let timed = TimedPlan::new(world, plan);
+        let flown = TimedPlan::flown(world, plan);
         let t = &world.terrain;
         let mut alt = (t.min_height(), t.max_height());
         for p in timed.paths.iter().flat_map(|p| p.abs.iter()) {
@@ -74,6 +77,7 @@ impl<'a> View3d<'a> {
             plan,
             title,
             timed,
+            flown,
             marks: ViolationMarks::new(world, plan),
             x,
             y,
@@ -282,7 +286,7 @@ impl Figure for View3d<'_> {
 
         let t = &self.world.terrain;
         // Path shadows, draped on the ground.
-        for (i, p) in self.timed.paths.iter().enumerate() {
+        for (i, p) in self.flown.paths.iter().enumerate() {
             let c = style::uav_colour(i);
             let mut shadow = Vec::new();
             for w in p.abs.windows(2) {
@@ -353,16 +357,17 @@ impl Figure for View3d<'_> {
             )))?;
         }
 
-        for (i, p) in self.timed.paths.iter().enumerate() {
+        for (i, (p, f)) in self.timed.paths.iter().zip(&self.flown.paths).enumerate() {
             let c = style::uav_colour(i);
-            let pts: Vec<(f64, f64, f64)> = p.abs.iter().map(|q| (q.x, q.z, q.y)).collect();
+            let line: Vec<(f64, f64, f64)> = f.abs.iter().map(|q| (q.x, q.z, q.y)).collect();
             chart.draw_series(std::iter::once(PathElement::new(
-                pts.clone(),
+                line,
                 c.stroke_width(s.px(3.0)),
             )))?;
             chart.draw_series(
-                pts.into_iter()
-                    .map(|q| Circle::new(q, s.px(4.0), c.filled())),
+                p.abs
+                    .iter()
+                    .map(|q| Circle::new((q.x, q.z, q.y), s.px(4.0), c.filled())),
             )?;
         }
 

@@ -49,16 +49,21 @@ pub fn scene(world: &World, plan: &Plan) -> serde_json::Value {
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
             (a.min(*v), b.max(*v))
         });
+    // The line is what is flown (arcs through the corners under the strict profile); the
+    // markers are the waypoints.
     let timed = TimedPlan::new(world, plan);
+    let flown = TimedPlan::flown(world, plan);
     let paths: Vec<_> = timed
         .paths
         .iter()
+        .zip(&flown.paths)
         .enumerate()
-        .map(|(i, p)| {
+        .map(|(i, (p, f))| {
             json!({
                 "name": format!("UAV {i}"),
                 "color": swarmplan_plot::uav_colour_hex(i),
-                "points": p.abs.iter().map(|a| [a.x, a.y, a.z]).collect::<Vec<_>>(),
+                "points": f.abs.iter().map(|a| [a.x, a.y, a.z]).collect::<Vec<_>>(),
+                "waypoints": p.abs.iter().map(|a| [a.x, a.y, a.z]).collect::<Vec<_>>(),
             })
         })
         .collect();

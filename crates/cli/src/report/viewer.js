@@ -112,7 +112,7 @@
         if (k === 0) ctx.moveTo(p[0], p[1]); else ctx.lineTo(p[0], p[1]);
       });
       ctx.stroke();
-      path.points.forEach(function (pt) {
+      (path.waypoints || path.points).forEach(function (pt) {
         var p = project(pt[0], pt[1], pt[2]);
         ctx.beginPath(); ctx.arc(p[0], p[1], 3, 0, 2 * Math.PI); ctx.fill();
       });

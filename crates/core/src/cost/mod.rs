@@ -132,7 +132,6 @@ pub struct Scratch {
     pub timed: TimedPlan,
     /// What is flown ([`World::flies_arcs`]): arcs through the corners, timed.
     pub flown: TimedPlan,
-    tangents: Vec<f64>,
     comm: comm::CommScratch,
     comm_out: Vec<comm::CommOutcome>,
     prox: proximity::ProximityScratch,
@@ -187,9 +186,7 @@ pub fn assess_into(
     scratch.timed.fill(world, plan);
     let flies_arcs = world.flies_arcs();
     if flies_arcs {
-        scratch
-            .flown
-            .fill_flown(world, &scratch.timed, &mut scratch.tangents);
+        scratch.flown.fill_flown(world, &scratch.timed);
     }
     // Where each UAV is when: the flown path, or the waypoint polyline.
     let motion = if flies_arcs {
@@ -231,7 +228,7 @@ pub fn assess_into(
                 &tp.abs,
                 |k| tp.time_at(k),
                 world.spec.uavs[u].turn_radius,
-                &mut scratch.tangents,
+                &fp.tangents,
                 sink,
             );
             crate::flight::check_arc_threats(world, u, fp, sink);

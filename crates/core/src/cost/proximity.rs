@@ -34,6 +34,57 @@ const FAR: f64 = 50.0;
 pub struct ProximityScratch {
     /// Per UAV: (time it leaves the start zone, time it enters the goal zone).
     window: Vec<(f64, f64)>,
+    /// Per UAV: when it reaches each vertex, and its velocity on each segment (computed
+    /// once per evaluation, then used by every pair the UAV is in).
+    motion: Vec<Motion>,
+}
+
+/// One UAV's piecewise-linear motion: [`segment_motion`] and [`TimedPath::time_at`]
+/// tabulated.
+#[derive(Debug, Clone, Default)]
+struct Motion {
+    /// When each vertex is reached.
+    times: Vec<f64>,
+    /// End time and velocity of each segment.
+    ends: Vec<f64>,
+    velocities: Vec<DVec3>,
+}
+
+impl Motion {
+    fn fill(&mut self, p: &TimedPath) {
+        self.times.clear();
+        self.times.extend((0..p.abs.len()).map(|k| p.time_at(k)));
+        self.ends.clear();
+        self.velocities.clear();
+        for k in 0..p.abs.len().saturating_sub(1) {
+            let (end, v) = segment_motion(p, k);
+            self.ends.push(end);
+            self.velocities.push(v);
+        }
+    }
+
+    /// Index of the segment flown at time t (segments past the last mean "arrived").
+    fn segment_at(&self, t: f64) -> usize {
+        self.times[1..].partition_point(|&tk| tk <= t)
+    }
+
+    /// End time and velocity of segment k (infinite end and zero velocity once arrived).
+    fn segment(&self, k: usize) -> (f64, DVec3) {
+        match (self.ends.get(k), self.velocities.get(k)) {
+            (Some(e), Some(v)) => (*e, *v),
+            _ => (f64::INFINITY, DVec3::ZERO),
+        }
+    }
+
+    /// Position at time t on segment k with velocity v.
+    fn position(&self, p: &TimedPath, k: usize, v: DVec3, t: f64) -> DVec3 {
+        let last = p.abs.len() - 1;
+        if k >= last {
+            p.abs[last]
+        } else {
+            p.abs[k] + v * (t - self.times[k])
+        }
+    }
 }
 
 /// Adds each UAV's share of Eq. 8 to `out` and reports separation violations.
@@ -73,6 +124,10 @@ pub fn proximity(
             enter_time(tp, goal.x, goal.y, zone),
         ));
     }
+    s.motion.resize_with(n, Motion::default);
+    for (m, tp) in s.motion.iter_mut().zip(&timed.paths) {
+        m.fill(tp);
+    }
     let sep = timing.separation;
     for i in 0..n {
         for j in i + 1..n {
@@ -81,7 +136,8 @@ pub fn proximity(
             if t_to <= t_from {
                 continue;
             }
-            let (a, b) = (&timed.paths[i], &timed.paths[j]);
+            let a = (&timed.paths[i], &s.motion[i]);
+            let b = (&timed.paths[j], &s.motion[j]);
             let mut episode: Option<(f64, f64, DVec3)> = None;
             let mut integral = 0.0;
             for_each_interval(a, b, t_from, t_to, |t0, dt, pa, pb, va, vb| {
@@ -124,32 +180,43 @@ pub fn proximity(
 }
 
 /// int_0^dt dtau / (a tau^2 + b tau + c), for a >= 0, c > 0, b^2 <= 4ac.
+///
+/// (2 / sqrt D) (atan x1 - atan x0) with x = (2 a tau + b) / sqrt D, taken as one
+/// arctangent, atan((x1 - x0) / (1 + x0 x1)), which holds while x0 x1 > -1 (else the
+/// difference of two).
 fn interval_integral(a: f64, b: f64, c: f64, dt: f64) -> f64 {
     if a <= 1e-12 {
         return dt / c;
     }
     let disc = (4.0 * a * c - b * b).max(1e-300);
     let root = disc.sqrt();
-    2.0 / root * (((2.0 * a * dt + b) / root).atan() - (b / root).atan())
+    let (x0, x1) = (b / root, (2.0 * a * dt + b) / root);
+    let denominator = 1.0 + x0 * x1;
+    let difference = if denominator > 0.0 {
+        ((x1 - x0) / denominator).atan()
+    } else {
+        x1.atan() - x0.atan()
+    };
+    2.0 / root * difference
 }
 
 /// Calls `f(t0, dt, pa, pb, va, vb)` for each interval of [from, to] on which both UAVs move
 /// linearly: positions at t0 and velocities (zero once arrived).
 fn for_each_interval(
-    a: &TimedPath,
-    b: &TimedPath,
+    (a, ma): (&TimedPath, &Motion),
+    (b, mb): (&TimedPath, &Motion),
     from: f64,
     to: f64,
     mut f: impl FnMut(f64, f64, DVec3, DVec3, DVec3, DVec3),
 ) {
-    let (mut ka, mut kb) = (segment_at(a, from), segment_at(b, from));
+    let (mut ka, mut kb) = (ma.segment_at(from), mb.segment_at(from));
     let mut t = from;
     while t < to {
-        let (ea, va) = segment_motion(a, ka);
-        let (eb, vb) = segment_motion(b, kb);
+        let (ea, va) = ma.segment(ka);
+        let (eb, vb) = mb.segment(kb);
         let t1 = ea.min(eb).min(to);
-        let pa = position_on(a, ka, va, t);
-        let pb = position_on(b, kb, vb, t);
+        let pa = ma.position(a, ka, va, t);
+        let pb = mb.position(b, kb, vb, t);
         if t1 > t {
             f(t, t1 - t, pa, pb, va, vb);
         }
@@ -167,22 +234,6 @@ fn for_each_interval(
             break;
         }
     }
-}
-
-/// Position at time t of a UAV known to be on segment k with velocity v.
-fn position_on(p: &TimedPath, k: usize, v: DVec3, t: f64) -> DVec3 {
-    let last = p.abs.len() - 1;
-    if k >= last {
-        p.abs[last]
-    } else {
-        p.abs[k] + v * (t - p.time_at(k))
-    }
-}
-
-/// Index of the segment flown at time t (segments past the last mean "arrived").
-fn segment_at(p: &TimedPath, t: f64) -> usize {
-    let last = p.abs.len() - 1;
-    (0..last).find(|&k| p.time_at(k + 1) > t).unwrap_or(last)
 }
 
 /// End time and velocity of segment k (infinite end and zero velocity once arrived).
@@ -265,6 +316,8 @@ mod tests {
             (4.0, -30.0, 100.0, 10.0),
             (0.0, 0.0, 5.0, 3.0),
             (1.0, 2.0, 2.0, 7.5),
+            // Passing the closest approach mid-interval (x0 x1 < -1: two arctangents).
+            (100.0, -2000.0, 10_001.0, 20.0),
         ] {
             let n = 200_000;
             let h = dt / n as f64;

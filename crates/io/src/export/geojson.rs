@@ -5,8 +5,9 @@
 //!
 //! RFC 7946 calls the third coordinate a height above the ellipsoid; these files carry the
 //! altitude above mean sea level instead (no geoid model is applied), and every feature
-//! says so in its `altitude_reference` property. `kind` tells features apart: `path`,
-//! `start`, `goal`, `threat`.
+//! says so in its `altitude_reference` property. `kind` tells features apart: `path` (the
+//! waypoints, re-importable), `flown` (the path as flown and assessed: arcs of the turning
+//! radius through the corners, time-stamped), `start`, `goal`, `threat`.
 
 use serde_json::{json, Value};
 
@@ -35,9 +36,28 @@ pub(crate) fn geojson(m: &Mission) -> String {
                 "speed_mps": p.speed_mps,
                 "length_m": p.length_m,
                 "arrival_s": p.points[p.points.len() - 1].time_s,
+                "acceptance_m": p.points.iter().map(|pt| pt.acceptance_m).collect::<Vec<_>>(),
                 "time_s": p.points.iter().map(|pt| pt.time_s).collect::<Vec<_>>(),
                 "alt_agl_m": p.points.iter().map(|pt| pt.alt_agl_m).collect::<Vec<_>>(),
                 "ground_amsl_m": p.points.iter().map(|pt| pt.ground_amsl_m).collect::<Vec<_>>(),
+                "altitude_reference": reference,
+            },
+        }));
+    }
+    for p in &m.paths {
+        features.push(json!({
+            "type": "Feature",
+            "geometry": {
+                "type": "LineString",
+                "coordinates": p.flown.iter().map(|pt| position(&pt.geo)).collect::<Vec<_>>(),
+            },
+            "properties": {
+                "kind": "flown",
+                "scenario": m.scenario,
+                "uav": p.uav,
+                "turn_radius_m": p.turn_radius_m,
+                "time_s": p.flown.iter().map(|pt| pt.time_s).collect::<Vec<_>>(),
+                "alt_agl_m": p.flown.iter().map(|pt| pt.alt_agl_m).collect::<Vec<_>>(),
                 "altitude_reference": reference,
             },
         }));

@@ -1,4 +1,5 @@
-//! One KML 2.2 document for the fleet: a LineString per UAV with `altitudeMode` absolute
+//! One KML 2.2 document for the fleet: a LineString per UAV (the path as flown: arcs of the
+//! turning radius through the corners) with `altitudeMode` absolute
 //! (KML's name for altitude above sea level), a Point for each start and for the goal, and
 //! a Polygon per threat, extruded from the ground to its drawn height (`relativeToGround`).
 //! Text is escaped for XML; the document's description states the altitude reference.
@@ -56,8 +57,9 @@ pub(crate) fn kml(m: &Mission) -> String {
          <PolyStyle><color>550000ff</color></PolyStyle></Style>"
     );
     for p in &m.paths {
+        // The line is the path as flown and assessed (arcs through the corners).
         let coords: Vec<String> = p
-            .points
+            .flown
             .iter()
             .map(|pt| coord(&pt.geo, pt.geo.alt_m))
             .collect();
@@ -67,7 +69,8 @@ pub(crate) fn kml(m: &Mission) -> String {
             s,
             "<description>{}</description>",
             escape(&format!(
-                "speed {} m/s, length {:.1} m, arrival {:.1} s; {ALTITUDE_REFERENCE}",
+                "flown path (turning radius {} m), speed {} m/s, length {:.1} m, arrival {:.1} s; {ALTITUDE_REFERENCE}",
+                p.turn_radius_m,
                 p.speed_mps,
                 p.length_m,
                 p.points[p.points.len() - 1].time_s

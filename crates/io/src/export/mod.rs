@@ -140,8 +140,25 @@ pub struct MissionPoint {
     pub alt_agl_m: f64,
     /// Terrain altitude AMSL below the point, metres.
     pub ground_amsl_m: f64,
-    /// Time of arrival, seconds after departure.
+    /// When the flown path passes the waypoint, seconds after departure (the middle of
+    /// the arc that flies its corner).
     pub time_s: f64,
+    /// Distance before the waypoint at which the turn starts, R tan(theta / 2), metres:
+    /// the acceptance radius that makes an autopilot turn where the assessed arc does
+    /// (0 at the start and the goal, and for plans assessed as straight segments).
+    pub acceptance_m: f64,
+}
+
+/// One point of the flown path (densified arcs, [`swarmplan_core::flight`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FlownPoint {
+    /// Plan coordinates [x, y, absolute altitude] in the local frame.
+    pub local_abs: DVec3,
+    pub geo: Geodetic,
+    pub alt_agl_m: f64,
+    pub time_s: f64,
+    /// Whether the segment that ends here is a chord of an arc.
+    pub on_arc: bool,
 }
 
 /// One UAV's path.
@@ -155,6 +172,11 @@ pub struct MissionPath {
     pub length_m: f64,
     /// Drone size (hard zone margin of threats), metres.
     pub size_m: f64,
+    /// Turning radius the flown path uses, metres (0: straight segments).
+    pub turn_radius_m: f64,
+    /// The path as flown and assessed: the waypoint polyline with an arc through every
+    /// corner, time-stamped (the waypoints themselves under the paper profile).
+    pub flown: Vec<FlownPoint>,
 }
 
 /// A threat cylinder in WGS 84.
@@ -217,8 +239,20 @@ impl Mission {
         let offset = frame.altitude_offset();
         let ground = |x: f64, y: f64| world.terrain.height(x, y) + offset;
         let timed = TimedPlan::new(world, plan);
+        let arcs = world.flies_arcs();
+        let mut flown = TimedPlan::default();
+        if arcs {
+            flown.fill_flown(world, &timed);
+        }
+        let flown = if arcs { &flown } else { &timed };
         let mut paths = Vec::with_capacity(n);
-        for (i, (p, tp)) in plan.uavs.iter().zip(&timed.paths).enumerate() {
+        for (i, (p, (tp, fp))) in plan
+            .uavs
+            .iter()
+            .zip(timed.paths.iter().zip(&flown.paths))
+            .enumerate()
+        {
+            let times = fp.waypoint_times(p.waypoints.len());
             let points = p
                 .waypoints
                 .iter()
@@ -229,16 +263,37 @@ impl Mission {
                         geo: frame.to_geodetic(tp.abs[k])?,
                         alt_agl_m: w.z,
                         ground_amsl_m: ground(w.x, w.y),
-                        time_s: tp.time_at(k),
+                        time_s: times[k],
+                        acceptance_m: fp.tangents.get(k).copied().unwrap_or(0.0),
+                    })
+                })
+                .collect::<Result<Vec<_>, GeoError>>()?;
+            let flown_points = fp
+                .abs
+                .iter()
+                .enumerate()
+                .map(|(k, a)| {
+                    Ok(FlownPoint {
+                        local_abs: *a,
+                        geo: frame.to_geodetic(*a)?,
+                        alt_agl_m: a.z - world.terrain.height(a.x, a.y),
+                        time_s: fp.time_at(k),
+                        on_arc: k > 0 && fp.flown.get(k - 1).is_some_and(|f| f.arc),
                     })
                 })
                 .collect::<Result<Vec<_>, GeoError>>()?;
             paths.push(MissionPath {
                 uav: i,
                 points,
-                speed_mps: tp.speed,
-                length_m: tp.length,
+                speed_mps: fp.speed,
+                length_m: fp.length,
                 size_m: world.spec.uavs[i].size,
+                turn_radius_m: if arcs {
+                    world.spec.uavs[i].turn_radius
+                } else {
+                    0.0
+                },
+                flown: flown_points,
             });
         }
         let mut threats = Vec::with_capacity(world.spec.threats.len());
@@ -333,7 +388,10 @@ pub fn write_mission(
             .collect(),
         ExportFormat::GeoJson => vec![("mission.geojson".into(), geojson::geojson(mission))],
         ExportFormat::Kml => vec![("mission.kml".into(), kml::kml(mission))],
-        ExportFormat::Csv => vec![("mission.csv".into(), csv::csv(mission))],
+        ExportFormat::Csv => vec![
+            ("mission.csv".into(), csv::csv(mission)),
+            ("trajectory.csv".into(), csv::trajectory_csv(mission)),
+        ],
     };
     let mut written = Vec::with_capacity(files.len());
     for (name, text) in files {

@@ -7,7 +7,9 @@
 //! Items: NAV_TAKEOFF (22) at the start up to the start's altitude, DO_CHANGE_SPEED (178,
 //! ground speed) once, because a swarmplan path has one constant planned speed,
 //! NAV_WAYPOINT (16) for every path point (start and goal included), NAV_LAND (21) at the
-//! goal. Positions use MAV_FRAME_GLOBAL (0): altitude above mean sea level, the planner's
+//! goal. A waypoint's param 2, the acceptance radius, is the tangent length R tan(theta/2)
+//! of its turn (issue 15): the autopilot moves on to the next leg where the assessed arc
+//! begins (docs/export.md says what autopilots do with it). Positions use MAV_FRAME_GLOBAL (0): altitude above mean sea level, the planner's
 //! terrain + AGL, so the mission does not depend on the home altitude the autopilot
 //! measures; the .plan items also say `AltitudeMode` 2 (QGC's "absolute"). Yaw (param 4)
 //! is NaN (null in JSON, `nan` in WPL): the autopilot's own heading mode. Threats become
@@ -69,12 +71,14 @@ pub(crate) fn items(p: &MissionPath) -> Vec<Item> {
         params: [SPEED_TYPE_GROUND, p.speed_mps, -1.0, 0.0, 0.0, 0.0, 0.0],
     });
     for pt in &p.points {
-        out.push(nav(
+        let mut item = nav(
             MAV_CMD_NAV_WAYPOINT,
             pt.geo.lat_deg,
             pt.geo.lon_deg,
             pt.geo.alt_m,
-        ));
+        );
+        item.params[1] = pt.acceptance_m;
+        out.push(item);
     }
     out.push(nav(
         MAV_CMD_NAV_LAND,
