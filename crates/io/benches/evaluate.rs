@@ -1,22 +1,45 @@
-//! One full evaluation (decode + every cost term + every constraint) of a 5-UAV plan in the
-//! paper's cases. Target (issue 2): <= 20 us on the project's 2-core machine.
+//! One full evaluation (decode + every cost term + every constraint) of a plan, as the
+//! optimizers call it. Targets (issue 12, docs/performance.md): <= 10 us for the paper
+//! cases' 5 UAVs, <= 1 ms for 100 UAVs, on the project's 2-core machine.
+//!
+//! Three kinds of input:
+//! - `evaluate/<case>/<encoding>`: 64 uniform random vectors of the box (sharp turns
+//!   everywhere, the worst case for the flown path's arcs);
+//! - `evaluate/<case>/planned`: 64 small perturbations (1 % of each bound's width) of a plan
+//!   found by a short swarmplan run, what a search evaluates once it has found the corridor;
+//! - `scale/<n>`: generated scenarios `gen-s1-u<n>-t12` with 5 to 100 UAVs, 64 vectors from
+//!   the swarmplan method's initialisation.
 
-use criterion::{criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use rand::Rng as _;
+use rand_distr::{Distribution, Normal};
 use swarmplan_core::encoding::{EncodingKind, InitKind};
+use swarmplan_core::method::Method;
+use swarmplan_core::optim::{Budget, OptimizerParams};
 use swarmplan_core::planning::PlanningProblem;
 use swarmplan_core::problem::Problem;
 use swarmplan_core::rng::rng_from_seed;
+use swarmplan_core::run::{run, RunRequest};
 use swarmplan_io::scenario::{build_world, load_spec};
 
-fn bench(c: &mut Criterion) {
+/// Evaluates the vectors `xs` in turn.
+fn cycle(c: &mut Criterion, name: &str, problem: &PlanningProblem<'_>, xs: &[Vec<f64>]) {
+    let mut i = 0;
+    c.bench_function(name, |b| {
+        b.iter(|| {
+            i = (i + 1) % xs.len();
+            std::hint::black_box(problem.evaluate(std::hint::black_box(&xs[i])))
+        });
+    });
+}
+
+fn paper_cases(c: &mut Criterion) {
     for case in ["paper-case1", "paper-case2"] {
         let loaded = load_spec(case).expect("built-in scenario");
         let world = build_world(&loaded, None).expect("built-in world");
         for kind in [EncodingKind::Spherical, EncodingKind::Cartesian] {
             let problem = PlanningProblem::new(&world, kind, InitKind::Uniform);
             let mut rng = rng_from_seed(42);
-            // 64 random candidates, cycled: a mix of what optimizers evaluate.
             let xs: Vec<Vec<f64>> = (0..64)
                 .map(|_| {
                     problem
@@ -26,16 +49,66 @@ fn bench(c: &mut Criterion) {
                         .collect()
                 })
                 .collect();
-            let mut i = 0;
-            c.bench_function(&format!("evaluate/{case}/{kind}"), |b| {
-                b.iter(|| {
-                    i = (i + 1) % xs.len();
-                    std::hint::black_box(problem.evaluate(std::hint::black_box(&xs[i])))
-                });
-            });
+            cycle(c, &format!("evaluate/{case}/{kind}"), &problem, &xs);
         }
+        let method = Method::preset("swarmplan").expect("a preset");
+        let found = run(
+            &world,
+            &RunRequest {
+                method,
+                params: OptimizerParams::default(),
+                budget: Budget::evaluations(4000),
+                seed: 1,
+            },
+            &mut |_| {},
+        );
+        let problem = PlanningProblem::new(&world, method.encoding, method.init);
+        let mut rng = rng_from_seed(43);
+        let xs: Vec<Vec<f64>> = (0..64)
+            .map(|_| {
+                found
+                    .outcome
+                    .best_x
+                    .iter()
+                    .zip(problem.bounds())
+                    .map(|(x, b)| {
+                        let noise =
+                            Normal::new(0.0, 0.01 * b.width()).map_or(0.0, |d| d.sample(&mut rng));
+                        b.project(x + noise)
+                    })
+                    .collect()
+            })
+            .collect();
+        cycle(c, &format!("evaluate/{case}/planned"), &problem, &xs);
     }
 }
 
-criterion_group!(benches, bench);
+fn scale(c: &mut Criterion) {
+    let mut group = c.benchmark_group("scale");
+    group.sample_size(20);
+    for n in [5, 10, 20, 50, 100] {
+        let loaded = load_spec(&format!("gen-s1-u{n}-t12")).expect("a generated scenario");
+        let world = build_world(&loaded, None).expect("a generated world");
+        let method = Method::preset("swarmplan").expect("a preset");
+        let problem = PlanningProblem::new(&world, method.encoding, method.init);
+        let mut rng = rng_from_seed(44);
+        let xs: Vec<Vec<f64>> = (0..64)
+            .map(|_| {
+                let mut x = vec![0.0; problem.dimension()];
+                problem.sample_initial(&mut rng, &mut x);
+                x
+            })
+            .collect();
+        let mut i = 0;
+        group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
+            b.iter(|| {
+                i = (i + 1) % xs.len();
+                std::hint::black_box(problem.evaluate(std::hint::black_box(&xs[i])))
+            });
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, paper_cases, scale);
 criterion_main!(benches);
