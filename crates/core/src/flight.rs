@@ -31,7 +31,7 @@ use glam::DVec3;
 
 use crate::feasibility::{At, ViolationKind, ViolationSink};
 use crate::timing::TimedPath;
-use crate::world::threat::point_segment_distance;
+use crate::world::threat::{point_segment_distance, segment_box_misses};
 use crate::world::World;
 
 /// Largest distance between an arc and the chords that fly it, metres.
@@ -323,11 +323,7 @@ pub fn check_arc_threats(world: &World, uav: usize, tp: &TimedPath, sink: &mut V
         let (a, b) = (tp.abs[s], tp.abs[s + 1]);
         for t in &world.spec.threats {
             let hard = t.r + size;
-            if a.x.min(b.x) > t.x + hard
-                || a.x.max(b.x) < t.x - hard
-                || a.y.min(b.y) > t.y + hard
-                || a.y.max(b.y) < t.y - hard
-            {
+            if segment_box_misses(t, a, b, hard) {
                 continue;
             }
             let d = point_segment_distance((t.x, t.y), (a.x, a.y), (b.x, b.y));

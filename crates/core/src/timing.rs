@@ -40,17 +40,9 @@ pub struct TimedPath {
 impl TimedPath {
     fn fill_geometry(&mut self, world: &World, path: &Path) {
         self.abs.clear();
-        self.cum.clear();
-        let mut s = 0.0;
-        for (k, p) in path.waypoints.iter().enumerate() {
-            let a = world.absolute(*p);
-            if k > 0 {
-                s += a.distance(self.abs[k - 1]);
-            }
-            self.abs.push(a);
-            self.cum.push(s);
-        }
-        self.length = s;
+        self.abs
+            .extend(path.waypoints.iter().map(|p| world.absolute(*p)));
+        self.fill_lengths();
     }
 
     /// The waypoint segment that segment `s` of this path lies on (itself for a waypoint

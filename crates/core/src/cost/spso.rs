@@ -17,7 +17,7 @@ use glam::DVec3;
 use crate::feasibility::{At, ViolationKind, ViolationSink};
 use crate::plan::Path;
 use crate::timing::TimedPath;
-use crate::world::threat::point_segment_distance;
+use crate::world::threat::{point_segment_distance, segment_box_misses};
 use crate::world::World;
 
 /// SPSO's danger distance is 10 drone sizes.
@@ -71,11 +71,7 @@ fn threat_term(
             let (a, b) = (w[k], w[k + 1]);
             // Cheap reject: both ends far beyond the band on the same side is not enough,
             // but a segment whose bounding box misses the band's box is clear.
-            if a.x.min(b.x) > t.x + outer
-                || a.x.max(b.x) < t.x - outer
-                || a.y.min(b.y) > t.y + outer
-                || a.y.max(b.y) < t.y - outer
-            {
+            if segment_box_misses(t, a, b, outer) {
                 continue;
             }
             let d = point_segment_distance((t.x, t.y), (a.x, a.y), (b.x, b.y));

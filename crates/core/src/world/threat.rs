@@ -22,6 +22,16 @@ fn default_draw_height() -> f64 {
     150.0
 }
 
+/// Whether the horizontal bounding box of segment a-b misses the square of half-width
+/// `reach` around the axis of `t` (then the segment is farther than `reach` from it).
+#[must_use]
+pub fn segment_box_misses(t: &Threat, a: glam::DVec3, b: glam::DVec3, reach: f64) -> bool {
+    a.x.min(b.x) > t.x + reach
+        || a.x.max(b.x) < t.x - reach
+        || a.y.min(b.y) > t.y + reach
+        || a.y.max(b.y) < t.y - reach
+}
+
 /// Distance from point p to the segment a-b in the plane (SPSO's `DistP2S`, written so that
 /// a degenerate segment gives the distance to its point).
 #[must_use]

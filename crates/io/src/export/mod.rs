@@ -240,11 +240,7 @@ impl Mission {
         let ground = |x: f64, y: f64| world.terrain.height(x, y) + offset;
         let timed = TimedPlan::new(world, plan);
         let arcs = world.flies_arcs();
-        let mut flown = TimedPlan::default();
-        if arcs {
-            flown.fill_flown(world, &timed);
-        }
-        let flown = if arcs { &flown } else { &timed };
+        let flown = TimedPlan::flown(world, plan);
         let mut paths = Vec::with_capacity(n);
         for (i, (p, (tp, fp))) in plan
             .uavs
