@@ -437,3 +437,36 @@ fn the_flown_path_is_shorter_than_the_waypoints_by_the_cut_corners() {
     // The waypoint length (J1, SPSO's term) is unchanged.
     assert!((a.per_uav[0].raw[TermId::Length] - 1000.0).abs() < 1e-9);
 }
+
+#[test]
+fn repeated_waypoints_outside_the_map_are_reported_at_the_waypoint() {
+    // Found by the CI's 30-second `import` fuzz smoke: an imported plan whose waypoints repeat
+    // flies a path with fewer vertices than it has waypoints, and the map-box check indexed the
+    // flown path by waypoint number (out of bounds). The box is checked on the waypoints.
+    let mut s = spec(&[[100.0, 100.0, 150.0]]);
+    s.goal.position = [900.0, 100.0, 150.0];
+    let plan = Plan {
+        uavs: vec![path(&[
+            [100.0, 100.0, 150.0],
+            [500.0, 100.0, 150.0],
+            [500.0, 100.0, 150.0],
+            [500.0, 100.0, 150.0],
+            [500.0, 1200.0, 150.0],
+            [900.0, 100.0, 150.0],
+        ])],
+    };
+    let w = World::new(s, flat()).unwrap();
+    let v = check(&w, &plan);
+    let out: Vec<_> = v
+        .iter()
+        .filter(|v| v.kind == ViolationKind::Bounds)
+        .collect();
+    assert_eq!(out.len(), 1, "{v:?}");
+    assert_eq!(out[0].index, Some(4));
+    assert!((out[0].amount - 200.0).abs() < 1e-9, "{:?}", out[0]);
+    let at = out[0].position.unwrap();
+    assert!(
+        (at[0] - 500.0).abs() < 1e-9 && (at[1] - 1200.0).abs() < 1e-9,
+        "{at:?}"
+    );
+}

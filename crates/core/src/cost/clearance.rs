@@ -10,21 +10,23 @@ use crate::plan::Path;
 use crate::timing::TimedPath;
 use crate::world::World;
 
-/// Checks clearance and bounds of UAV `uav`. Returns the minimum clearance found, exact when
-/// `exact` is set (otherwise a lower bound good enough to decide feasibility).
+/// Checks clearance and bounds of UAV `uav`: the map box on the waypoints of `waypoints`
+/// (`path` and its timed form), the clearance along the segments of `flown` (the flown path
+/// under the strict profile, the waypoint path otherwise; the two differ in length, so each
+/// check indexes only its own). Returns the minimum clearance found, exact when `exact` is
+/// set (otherwise a lower bound good enough to decide feasibility).
 pub fn check_clearance(
     world: &World,
     uav: usize,
-    path: &Path,
-    tp: &TimedPath,
+    (path, waypoints): (&Path, &TimedPath),
+    flown: &TimedPath,
     exact: bool,
     sink: &mut ViolationSink,
 ) -> f64 {
     let map = &world.spec.map;
     let terrain = &world.terrain;
-    let p = &tp.abs;
     let mut min_clear = f64::INFINITY;
-    for (k, w) in path.waypoints.iter().enumerate() {
+    for (k, (w, &at)) in path.waypoints.iter().zip(&waypoints.abs).enumerate() {
         let out = (map.x[0] - w.x)
             .max(w.x - map.x[1])
             .max(map.y[0] - w.y)
@@ -36,7 +38,7 @@ pub fn check_clearance(
                 out,
                 At {
                     index: Some(k),
-                    position: Some(p[k]),
+                    position: Some(at),
                     ..At::default()
                 },
                 || {
@@ -48,6 +50,7 @@ pub fn check_clearance(
             );
         }
     }
+    let p = &flown.abs;
     for s in 0..p.len().saturating_sub(1) {
         let (a, b) = (p[s], p[s + 1]);
         if !exact && terrain.segment_clears(a, b, map.clearance, map.clearance_step) {
@@ -66,9 +69,9 @@ pub fn check_clearance(
         }
         min_clear = min_clear.min(worst);
         if worst < map.clearance - 1e-9 {
-            let time = tp.time_at(s)
-                + if tp.speed > 0.0 {
-                    worst_at.distance(a) / tp.speed
+            let time = flown.time_at(s)
+                + if flown.speed > 0.0 {
+                    worst_at.distance(a) / flown.speed
                 } else {
                     0.0
                 };
@@ -77,7 +80,7 @@ pub fn check_clearance(
                 uav,
                 map.clearance - worst,
                 At {
-                    index: Some(tp.waypoint_segment(s)),
+                    index: Some(flown.waypoint_segment(s)),
                     position: Some(worst_at),
                     time: Some(time),
                     ..At::default()

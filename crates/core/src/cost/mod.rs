@@ -233,7 +233,7 @@ pub fn assess_into(
             );
             crate::flight::check_arc_threats(world, u, fp, sink);
         }
-        let min_clearance = clearance::check_clearance(world, u, path, fp, exact, sink);
+        let min_clearance = clearance::check_clearance(world, u, (path, tp), fp, exact, sink);
         let segments = tp.abs.len().saturating_sub(1);
         let safety = safety::safety_term(world, u, fp, segments, sink);
         let joules = energy::physical_energy(world, u, fp, &kin);
