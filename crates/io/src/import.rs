@@ -314,6 +314,12 @@ fn to_plan(
                 waypoints[k] = want;
             }
         }
+        crate::plan_file::check_waypoints(world, i, &waypoints).map_err(|e| {
+            invalid(match e.waypoint {
+                Some(k) => format!("uav {i} waypoint {k}: {}", e.message),
+                None => format!("uav {i}: {}", e.message),
+            })
+        })?;
         plan.uavs.push(UavPath { waypoints });
     }
     Ok(plan)

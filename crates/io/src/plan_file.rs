@@ -175,47 +175,16 @@ pub fn parse_plan(
                 ),
             ));
         }
-        for (k, w) in u.waypoints.iter().enumerate() {
-            if w.iter().any(|v| !v.is_finite()) {
-                return Err(invalid(
-                    format!("uavs[{i}].waypoints[{k}]"),
-                    format!("expected finite numbers, got {w:?}"),
-                ));
-            }
-        }
-        let (bx, by) = (world.spec.map.x, world.spec.map.y);
-        let slack = 1e-6 * (bx[1] - bx[0]).max(by[1] - by[0]);
-        for (k, w) in u.waypoints.iter().enumerate() {
-            let inside = w[0] >= bx[0] - slack
-                && w[0] <= bx[1] + slack
-                && w[1] >= by[0] - slack
-                && w[1] <= by[1] + slack;
-            if !inside {
-                return Err(invalid(
-                    format!("uavs[{i}].waypoints[{k}]"),
-                    format!(
-                        "expected a point in the map box x {bx:?}, y {by:?} (the model is defined there), got {w:?}"
-                    ),
-                ));
-            }
-        }
-        // The channel is tabulated over CHANNEL_HORIZON_S; a flight longer than that even at
-        // top speed is no plan (and would take hours to evaluate).
-        let length: f64 = u
-            .waypoints
-            .windows(2)
-            .map(|s| DVec3::from_array(s[0]).distance(DVec3::from_array(s[1])))
-            .sum();
-        let v_max = world.spec.uavs[i].speed[1];
-        if length / v_max > CHANNEL_HORIZON_S {
-            return Err(invalid(
-                format!("uavs[{i}].waypoints"),
-                format!(
-                    "the path is {length:.3e} m long: even at v_max {v_max} m/s the flight lasts {:.3e} s, beyond the {CHANNEL_HORIZON_S} s the model covers",
-                    length / v_max
-                ),
-            ));
-        }
+        let waypoints: Vec<DVec3> = u.waypoints.iter().map(|w| DVec3::from_array(*w)).collect();
+        check_waypoints(world, i, &waypoints).map_err(|e| {
+            invalid(
+                match e.waypoint {
+                    Some(k) => format!("uavs[{i}].waypoints[{k}]"),
+                    None => format!("uavs[{i}].waypoints"),
+                },
+                e.message,
+            )
+        })?;
         let ends = [
             (0, world.start(i), "start"),
             (u.waypoints.len() - 1, world.goal, "goal"),
@@ -232,11 +201,68 @@ pub fn parse_plan(
                 ));
             }
         }
-        plan.uavs.push(UavPath {
-            waypoints: u.waypoints.iter().map(|w| DVec3::from_array(*w)).collect(),
-        });
+        plan.uavs.push(UavPath { waypoints });
     }
     Ok(plan)
+}
+
+/// Why a UAV's waypoints cannot be evaluated: which waypoint (none when it is the path as a
+/// whole) and what was expected.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InadmissiblePath {
+    pub waypoint: Option<usize>,
+    pub message: String,
+}
+
+/// Checks that UAV `uav`'s waypoints (x, y, height above ground) are a path the model can
+/// evaluate: finite, inside the map box (the model is defined there), and short enough to be
+/// flown at top speed within the [`CHANNEL_HORIZON_S`] the channel is tabulated over (a longer
+/// one is no plan and would take hours to evaluate). Every reader of plans from outside
+/// (plan files, imported missions) goes through it.
+pub fn check_waypoints(
+    world: &World,
+    uav: usize,
+    waypoints: &[DVec3],
+) -> Result<(), InadmissiblePath> {
+    let at = |k: usize, message: String| InadmissiblePath {
+        waypoint: Some(k),
+        message,
+    };
+    if let Some(k) = waypoints.iter().position(|w| !w.is_finite()) {
+        return Err(at(
+            k,
+            format!("expected finite numbers, got {:?}", waypoints[k].to_array()),
+        ));
+    }
+    let (bx, by) = (world.spec.map.x, world.spec.map.y);
+    let slack = 1e-6 * (bx[1] - bx[0]).max(by[1] - by[0]);
+    for (k, w) in waypoints.iter().enumerate() {
+        let inside = w.x >= bx[0] - slack
+            && w.x <= bx[1] + slack
+            && w.y >= by[0] - slack
+            && w.y <= by[1] + slack;
+        if !inside {
+            return Err(at(
+                k,
+                format!(
+                    "expected a point in the map box x {bx:?}, y {by:?} (the model is defined there), got {:?}",
+                    w.to_array()
+                ),
+            ));
+        }
+    }
+    let length: f64 = waypoints.windows(2).map(|s| s[0].distance(s[1])).sum();
+    let v_max = world.spec.uavs[uav].speed[1];
+    if length / v_max > CHANNEL_HORIZON_S {
+        return Err(InadmissiblePath {
+            waypoint: None,
+            message: format!(
+                "the path is {length:.3e} m long: even at v_max {v_max} m/s the flight lasts {:.3e} s, beyond the {CHANNEL_HORIZON_S} s the model covers",
+                length / v_max
+            ),
+        });
+    }
+    Ok(())
 }
 
 /// The plan file of `plan` with times, speeds and altitudes filled in.

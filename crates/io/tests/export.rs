@@ -531,3 +531,54 @@ fn the_exported_trajectory_is_the_assessed_flown_path() {
         }
     }
 }
+
+/// Rewrites field `column` of the CSV row of UAV 0's waypoint 1 in an exported mission.
+fn edit_mission_csv(csv: &str, column: &str, edit: impl Fn(f64) -> f64) -> String {
+    let mut lines: Vec<String> = csv.lines().map(str::to_string).collect();
+    let header = lines.iter().position(|l| l.starts_with("uav,")).unwrap();
+    let col = lines[header].split(',').position(|c| c == column).unwrap();
+    let row = lines
+        .iter()
+        .position(|l| l.starts_with("0,1,"))
+        .expect("a row for uav 0 waypoint 1");
+    let mut fields: Vec<String> = lines[row].split(',').map(str::to_string).collect();
+    fields[col] = edit(fields[col].parse().unwrap()).to_string();
+    lines[row] = fields.join(",");
+    lines.join("\n")
+}
+
+#[test]
+fn imported_missions_outside_the_model_are_refused_naming_the_waypoint() {
+    // Found by the CI's 30-second `import` fuzz smoke: an imported waypoint 1e50 m above
+    // ground made a flight of 1e48 s, which the communication sweep walked step by step (a
+    // hang). Imports now pass the plan file's checks: map box and the channel's horizon.
+    let world = tiny();
+    let plan = Plan::straight(
+        &(0..world.uav_count())
+            .map(|i| world.start(i))
+            .collect::<Vec<_>>(),
+        world.goal,
+        4,
+    );
+    let dir = tempfile::tempdir().unwrap();
+    export_plan(&world, &plan, &frame(), ExportFormat::Csv, dir.path()).unwrap();
+    let csv = std::fs::read_to_string(dir.path().join("mission.csv")).unwrap();
+    let f = frame();
+    assert!(parse_csv(&csv, "m.csv", &world, &f).is_ok());
+    let high = edit_mission_csv(&csv, "alt_agl_m", |_| 1e50);
+    let e = parse_csv(&high, "m.csv", &world, &f)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("m.csv: uav 0: the path is") && e.contains("beyond the 3600 s"),
+        "{e}"
+    );
+    let east = edit_mission_csv(&csv, "lon_deg", |lon| lon + 1.0);
+    let e = parse_csv(&east, "m.csv", &world, &f)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("m.csv: uav 0 waypoint 1: expected a point in the map box"),
+        "{e}"
+    );
+}
