@@ -470,3 +470,31 @@ fn repeated_waypoints_outside_the_map_are_reported_at_the_waypoint() {
         "{at:?}"
     );
 }
+
+#[test]
+fn a_flight_longer_than_the_swept_horizon_is_a_communication_violation_not_a_hang() {
+    // A plan built in code (not read from a file, whose checks refuse it first) 1e50 m above
+    // ground lasts about 1e49 s; the communication sweep once walked all of it in 1 s steps.
+    let mut s = spec(&[[100.0, 100.0, 150.0]]);
+    s.communication.requirement = CommRequirement::Relay;
+    let w = World::new(s, flat()).unwrap();
+    let plan = Plan {
+        uavs: vec![path(&[
+            [100.0, 100.0, 150.0],
+            [500.0, 500.0, 1e50],
+            [900.0, 900.0, 150.0],
+        ])],
+    };
+    let v = check(&w, &plan);
+    let comm: Vec<_> = v
+        .iter()
+        .filter(|v| v.kind == ViolationKind::Comm && v.detail.contains("assessed over the first"))
+        .collect();
+    assert_eq!(comm.len(), 1, "{v:?}");
+    assert!(comm[0].amount > 1e40, "{:?}", comm[0]);
+    // A mission of ordinary length has no such violation.
+    let straight = Plan::straight(&[w.start(0)], w.goal, 5);
+    assert!(!check(&w, &straight)
+        .iter()
+        .any(|v| v.detail.contains("assessed over the first")));
+}

@@ -14,8 +14,15 @@ use glam::DVec3;
 
 use crate::feasibility::{At, ViolationKind, ViolationSink};
 use crate::timing::TimedPlan;
+use crate::world::channel::CHANNEL_HORIZON_S;
 use crate::world::spec::CommRequirement;
 use crate::world::World;
+
+/// The sweep covers at most this much of a mission (ten times the channel's tabulated
+/// horizon): a plan built in code whose flight lasts longer (an altitude of 1e50 m once made
+/// it 1e48 s) gets a communication violation for the rest instead of a sweep that never ends.
+/// Plan files and imports are refused earlier ([`CHANNEL_HORIZON_S`], docs/reliability.md).
+pub const MAX_SWEPT_S: f64 = 10.0 * CHANNEL_HORIZON_S;
 
 /// Reusable buffers of the connectivity sweep.
 #[derive(Debug, Clone, Default)]
@@ -56,7 +63,25 @@ pub fn communication(
     }
     let ch = &world.channel;
     let dt = ch.step();
-    let steps = (plan.horizon / dt).ceil() as usize;
+    if plan.horizon > MAX_SWEPT_S {
+        for (u, p) in plan.paths.iter().enumerate() {
+            if p.arrival > MAX_SWEPT_S {
+                sink.add(
+                    ViolationKind::Comm,
+                    u,
+                    p.arrival - MAX_SWEPT_S,
+                    At::default(),
+                    || {
+                        format!(
+                            "the flight lasts {:.3e} s: communication is assessed over the first {MAX_SWEPT_S} s only",
+                            p.arrival
+                        )
+                    },
+                );
+            }
+        }
+    }
+    let steps = (plan.horizon.min(MAX_SWEPT_S) / dt).ceil() as usize;
     s.hints.clear();
     s.hints.resize(n, 0);
     s.pos.resize(n, DVec3::ZERO);
