@@ -81,7 +81,13 @@ pub fn communication(
             }
         }
     }
-    let steps = (plan.horizon.min(MAX_SWEPT_S) / dt).ceil() as usize;
+    // Not `f64::min`: a NaN horizon (a plan of NaN waypoints) keeps sweeping no step.
+    let swept = if plan.horizon > MAX_SWEPT_S {
+        MAX_SWEPT_S
+    } else {
+        plan.horizon
+    };
+    let steps = (swept / dt).ceil() as usize;
     s.hints.clear();
     s.hints.resize(n, 0);
     s.pos.resize(n, DVec3::ZERO);
