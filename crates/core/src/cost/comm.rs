@@ -63,7 +63,8 @@ pub fn communication(
     }
     let ch = &world.channel;
     let dt = ch.step();
-    if plan.horizon > MAX_SWEPT_S {
+    // Not `f64::min`: a NaN horizon (a plan of NaN waypoints) keeps sweeping no step.
+    let swept = if plan.horizon > MAX_SWEPT_S {
         for (u, p) in plan.paths.iter().enumerate() {
             if p.arrival > MAX_SWEPT_S {
                 sink.add(
@@ -80,9 +81,6 @@ pub fn communication(
                 );
             }
         }
-    }
-    // Not `f64::min`: a NaN horizon (a plan of NaN waypoints) keeps sweeping no step.
-    let swept = if plan.horizon > MAX_SWEPT_S {
         MAX_SWEPT_S
     } else {
         plan.horizon
