@@ -139,6 +139,21 @@ pub struct Scratch {
     reports: Vec<UavReport>,
 }
 
+impl Scratch {
+    /// The per-UAV reports of the last assessment made on these buffers.
+    #[must_use]
+    pub fn reports(&self) -> &[UavReport] {
+        &self.reports
+    }
+
+    /// UAV pairs whose proximity the last assessment swept rather than took from the
+    /// previous one's (the rest had not moved; [`proximity::proximity`]).
+    #[must_use]
+    pub fn pairs_swept(&self) -> usize {
+        self.prox.pairs_swept()
+    }
+}
+
 /// Assesses `plan` (allocating); `report` asks for the violation list and exact clearances.
 #[must_use]
 pub fn assess(world: &World, plan: &Plan, report: bool) -> Assessment {

@@ -22,6 +22,7 @@ use glam::DVec3;
 use crate::feasibility::{At, ViolationKind, ViolationSink};
 use crate::plan::Plan;
 use crate::timing::{TimedPath, TimedPlan};
+use crate::world::spec::TimingPolicy;
 use crate::world::World;
 
 /// Beyond this closest approach (m) the Eq. 8 integral of an interval uses Simpson's rule:
@@ -29,38 +30,141 @@ use crate::world::World;
 /// evaluations of it.
 const FAR: f64 = 50.0;
 
-/// Reusable buffers of the proximity sweep.
+/// Reusable buffers of the proximity sweep, and its memo of pair results.
 #[derive(Debug, Clone, Default)]
 pub struct ProximityScratch {
-    /// Per UAV: (time it leaves the start zone, time it enters the goal zone).
-    window: Vec<(f64, f64)>,
-    /// Per UAV: when it reaches each vertex, and its velocity on each segment (computed
-    /// once per evaluation, then used by every pair the UAV is in).
+    /// Per UAV of this evaluation: its motion in the time unit (see [`TimeUnit`]).
     motion: Vec<Motion>,
+    /// The motions of the previous evaluation, which `pairs` belong to.
+    previous: Vec<Motion>,
+    /// The settings the memo was made under (epsilon, separation, zone radius, goal).
+    settings: Option<[u64; 6]>,
+    /// Per UAV: whether its motion differs from the previous evaluation's.
+    changed: Vec<bool>,
+    /// Per pair (i < j, row by row): its integral in the time unit and its separation
+    /// episodes, from the last evaluation in which it was computed.
+    pairs: Vec<PairResult>,
+    /// Pairs swept (not taken from the memo) by the last evaluation.
+    swept: usize,
 }
 
-/// One UAV's piecewise-linear motion: [`segment_motion`] and [`TimedPath::time_at`]
-/// tabulated.
+impl ProximityScratch {
+    /// Pairs the last evaluation swept rather than took from the memo.
+    #[must_use]
+    pub fn pairs_swept(&self) -> usize {
+        self.swept
+    }
+}
+
+/// One pair's share of the sweep, in the time unit: the Eq. 8 integral and the closest
+/// approaches of its separation episodes (distance, time, place), in the order found.
+#[derive(Debug, Clone, Default)]
+struct PairResult {
+    integral: f64,
+    episodes: Vec<(f64, f64, DVec3)>,
+}
+
+/// The time in which the pair sweep works. Under *common arrival* every UAV's waypoint
+/// times are T times its arc-length fractions, so the sweep runs on the fractions (unit T)
+/// and a change to one UAV's path, which moves T, leaves every other pair's result valid
+/// after the rescaling; under *cruise* the unit is one second.
+#[derive(Debug, Clone, Copy)]
+struct TimeUnit {
+    /// Seconds per unit.
+    seconds: f64,
+    common_arrival: bool,
+}
+
+impl TimeUnit {
+    fn of(world: &World, timed: &TimedPlan) -> Self {
+        let common_arrival = world.spec.timing.policy == TimingPolicy::CommonArrival;
+        let seconds = if common_arrival {
+            timed.paths.first().map_or(0.0, |p| p.arrival)
+        } else {
+            1.0
+        };
+        Self {
+            seconds,
+            common_arrival,
+        }
+    }
+
+    /// Metres per unit of `p`'s flight: its length under common arrival, else its speed;
+    /// 0 for a UAV that does not move.
+    fn speed(self, p: &TimedPath) -> f64 {
+        if p.speed <= 0.0 || self.seconds.is_nan() || self.seconds <= 0.0 {
+            0.0
+        } else if self.common_arrival {
+            p.length
+        } else {
+            p.speed
+        }
+    }
+}
+
+/// One UAV's piecewise-linear motion in the time unit: its vertices, when it reaches
+/// each, the end and velocity of each segment, and the stretch between leaving the start
+/// zone and entering the goal zone (computed once per evaluation, then used by every pair
+/// the UAV is in).
 #[derive(Debug, Clone, Default)]
 struct Motion {
-    /// When each vertex is reached.
+    abs: Vec<DVec3>,
     times: Vec<f64>,
-    /// End time and velocity of each segment.
     ends: Vec<f64>,
     velocities: Vec<DVec3>,
+    /// (time it leaves the start zone, time it enters the goal zone).
+    window: (f64, f64),
 }
 
 impl Motion {
-    fn fill(&mut self, p: &TimedPath) {
+    fn fill(&mut self, p: &TimedPath, unit_speed: f64, goal: DVec3, zone: f64) {
+        self.abs.clear();
+        self.abs.extend_from_slice(&p.abs);
         self.times.clear();
-        self.times.extend((0..p.abs.len()).map(|k| p.time_at(k)));
+        self.times.extend(p.cum.iter().map(|&c| {
+            if unit_speed > 0.0 {
+                c / unit_speed
+            } else {
+                0.0
+            }
+        }));
         self.ends.clear();
         self.velocities.clear();
-        for k in 0..p.abs.len().saturating_sub(1) {
-            let (end, v) = segment_motion(p, k);
+        for k in 0..self.abs.len().saturating_sub(1) {
+            let (end, v) = if unit_speed <= 0.0 {
+                (f64::INFINITY, DVec3::ZERO)
+            } else {
+                let (t0, t1) = (self.times[k], self.times[k + 1]);
+                if t1 <= t0 {
+                    (t1, DVec3::ZERO)
+                } else {
+                    (t1, (self.abs[k + 1] - self.abs[k]) / (t1 - t0))
+                }
+            };
             self.ends.push(end);
             self.velocities.push(v);
         }
+        let start = self.abs[0];
+        self.window = (
+            self.leave_time(start.x, start.y, zone),
+            self.enter_time(goal.x, goal.y, zone),
+        );
+    }
+
+    /// Bit for bit the same motion (so every pair result it is in stands).
+    fn same_as(&self, other: &Self) -> bool {
+        let bits = |v: &DVec3| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
+        self.abs.len() == other.abs.len()
+            && self
+                .abs
+                .iter()
+                .zip(&other.abs)
+                .all(|(a, b)| bits(a) == bits(b))
+            && self
+                .times
+                .iter()
+                .zip(&other.times)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
     }
 
     /// Index of the segment flown at time t (segments past the last mean "arrived").
@@ -77,17 +181,47 @@ impl Motion {
     }
 
     /// Position at time t on segment k with velocity v.
-    fn position(&self, p: &TimedPath, k: usize, v: DVec3, t: f64) -> DVec3 {
-        let last = p.abs.len() - 1;
+    fn position(&self, k: usize, v: DVec3, t: f64) -> DVec3 {
+        let last = self.abs.len() - 1;
         if k >= last {
-            p.abs[last]
+            self.abs[last]
         } else {
-            p.abs[k] + v * (t - self.times[k])
+            self.abs[k] + v * (t - self.times[k])
         }
+    }
+
+    /// First time the UAV is farther than `r` (horizontally) from (cx, cy); infinite if
+    /// never.
+    fn leave_time(&self, cx: f64, cy: f64, r: f64) -> f64 {
+        for k in 0..self.abs.len().saturating_sub(1) {
+            let (a, b) = (self.abs[k], self.abs[k + 1]);
+            if let Some(f) = first_crossing(a, b, cx, cy, r) {
+                return self.times[k] + f * (self.times[k + 1] - self.times[k]);
+            }
+        }
+        f64::INFINITY
+    }
+
+    /// Last time the UAV comes within `r` (horizontally) of (cx, cy) for good; 0 if always
+    /// inside.
+    fn enter_time(&self, cx: f64, cy: f64, r: f64) -> f64 {
+        for k in (0..self.abs.len().saturating_sub(1)).rev() {
+            let (a, b) = (self.abs[k + 1], self.abs[k]);
+            if let Some(f) = first_crossing(a, b, cx, cy, r) {
+                // Walking backwards from waypoint k + 1: fraction f of the way back to k.
+                return self.times[k + 1] - f * (self.times[k + 1] - self.times[k]);
+            }
+        }
+        0.0
     }
 }
 
 /// Adds each UAV's share of Eq. 8 to `out` and reports separation violations.
+///
+/// Pairs of UAVs whose motions (in the time unit) are bit for bit those of the previous
+/// call on the same scratch take their result from it, so an evaluation that changes one
+/// UAV of n sweeps n - 1 pairs instead of n (n - 1) / 2; the result is the same bit for bit
+/// as a sweep of every pair (the memo is a pure function of the motions and the settings).
 pub fn proximity(
     world: &World,
     plan: &Plan,
@@ -114,69 +248,87 @@ pub fn proximity(
         return;
     }
     let timing = &world.spec.timing;
-    let zone = timing.zone_radius;
-    s.window.clear();
-    for tp in &timed.paths {
-        let start = tp.abs[0];
-        let goal = world.goal;
-        s.window.push((
-            leave_time(tp, start.x, start.y, zone),
-            enter_time(tp, goal.x, goal.y, zone),
-        ));
-    }
+    let (zone, sep, goal) = (timing.zone_radius, timing.separation, world.goal);
+    let unit = TimeUnit::of(world, timed);
     s.motion.resize_with(n, Motion::default);
     for (m, tp) in s.motion.iter_mut().zip(&timed.paths) {
-        m.fill(tp);
+        m.fill(tp, unit.speed(tp), goal, zone);
     }
-    let sep = timing.separation;
+    let settings = [eps, sep, zone, goal.x, goal.y, goal.z].map(f64::to_bits);
+    let memo_valid = s.settings == Some(settings) && s.previous.len() == n;
+    s.changed.clear();
+    s.changed
+        .extend((0..n).map(|u| !memo_valid || !s.motion[u].same_as(&s.previous[u])));
+    s.pairs.resize_with(n * (n - 1) / 2, PairResult::default);
+    let mut index = 0;
+    s.swept = 0;
     for i in 0..n {
         for j in i + 1..n {
-            let t_from = s.window[i].0.max(s.window[j].0);
-            let t_to = s.window[i].1.min(s.window[j].1);
-            if t_to <= t_from {
-                continue;
+            let pair = &mut s.pairs[index];
+            index += 1;
+            if s.changed[i] || s.changed[j] {
+                sweep_pair(&s.motion[i], &s.motion[j], eps, sep, pair);
+                s.swept += 1;
             }
-            let a = (&timed.paths[i], &s.motion[i]);
-            let b = (&timed.paths[j], &s.motion[j]);
-            let mut episode: Option<(f64, f64, DVec3)> = None;
-            let mut integral = 0.0;
-            for_each_interval(a, b, t_from, t_to, |t0, dt, pa, pb, va, vb| {
-                let r0 = pa - pb;
-                let w = va - vb;
-                let qa = w.length_squared();
-                let qb = 2.0 * r0.dot(w);
-                let qc = r0.length_squared();
-                // Closest approach on the interval.
-                let tau = if qa > 0.0 {
-                    (-qb / (2.0 * qa)).clamp(0.0, dt)
-                } else {
-                    0.0
-                };
-                let dmin2 = (qa * tau + qb) * tau + qc;
-                integral += if dmin2 > FAR * FAR {
-                    let g = |tau: f64| 1.0 / ((qa * tau + qb) * tau + qc + eps);
-                    dt / 6.0 * (g(0.0) + 4.0 * g(0.5 * dt) + g(dt))
-                } else {
-                    interval_integral(qa, qb, qc + eps, dt)
-                };
-                if dmin2 < sep * sep {
-                    let d = dmin2.max(0.0).sqrt();
-                    let at = pa.lerp(pb, 0.5) + (va + vb) * (0.5 * tau);
-                    let e = episode.get_or_insert((d, t0 + tau, at));
-                    if d < e.0 {
-                        *e = (d, t0 + tau, at);
-                    }
-                } else if let Some(e) = episode.take() {
-                    report(sink, i, j, sep, e);
-                }
-            });
-            if let Some(e) = episode {
-                report(sink, i, j, sep, e);
+            for &(d, t, at) in &pair.episodes {
+                report(sink, i, j, sep, (d, t * unit.seconds, at));
             }
+            let integral = pair.integral * unit.seconds;
             out[i] += 0.5 * integral;
             out[j] += 0.5 * integral;
         }
     }
+    s.settings = Some(settings);
+    std::mem::swap(&mut s.motion, &mut s.previous);
+}
+
+/// The Eq. 8 integral and the separation episodes of UAVs `a` and `b` over the stretch
+/// where neither is exempt, in the time unit, into `out`.
+fn sweep_pair(a: &Motion, b: &Motion, eps: f64, sep: f64, out: &mut PairResult) {
+    out.integral = 0.0;
+    out.episodes.clear();
+    let t_from = a.window.0.max(b.window.0);
+    let t_to = a.window.1.min(b.window.1);
+    if t_to <= t_from {
+        return;
+    }
+    let mut episode: Option<(f64, f64, DVec3)> = None;
+    let mut integral = 0.0;
+    let episodes = &mut out.episodes;
+    for_each_interval(a, b, t_from, t_to, |t0, dt, pa, pb, va, vb| {
+        let r0 = pa - pb;
+        let w = va - vb;
+        let qa = w.length_squared();
+        let qb = 2.0 * r0.dot(w);
+        let qc = r0.length_squared();
+        // Closest approach on the interval.
+        let tau = if qa > 0.0 {
+            (-qb / (2.0 * qa)).clamp(0.0, dt)
+        } else {
+            0.0
+        };
+        let dmin2 = (qa * tau + qb) * tau + qc;
+        integral += if dmin2 > FAR * FAR {
+            let g = |tau: f64| 1.0 / ((qa * tau + qb) * tau + qc + eps);
+            dt / 6.0 * (g(0.0) + 4.0 * g(0.5 * dt) + g(dt))
+        } else {
+            interval_integral(qa, qb, qc + eps, dt)
+        };
+        if dmin2 < sep * sep {
+            let d = dmin2.max(0.0).sqrt();
+            let at = pa.lerp(pb, 0.5) + (va + vb) * (0.5 * tau);
+            let e = episode.get_or_insert((d, t0 + tau, at));
+            if d < e.0 {
+                *e = (d, t0 + tau, at);
+            }
+        } else if let Some(e) = episode.take() {
+            episodes.push(e);
+        }
+    });
+    if let Some(e) = episode {
+        out.episodes.push(e);
+    }
+    out.integral = integral;
 }
 
 /// int_0^dt dtau / (a tau^2 + b tau + c), for a >= 0, c > 0, b^2 <= 4ac.
@@ -203,8 +355,8 @@ fn interval_integral(a: f64, b: f64, c: f64, dt: f64) -> f64 {
 /// Calls `f(t0, dt, pa, pb, va, vb)` for each interval of [from, to] on which both UAVs move
 /// linearly: positions at t0 and velocities (zero once arrived).
 fn for_each_interval(
-    (a, ma): (&TimedPath, &Motion),
-    (b, mb): (&TimedPath, &Motion),
+    ma: &Motion,
+    mb: &Motion,
     from: f64,
     to: f64,
     mut f: impl FnMut(f64, f64, DVec3, DVec3, DVec3, DVec3),
@@ -215,8 +367,8 @@ fn for_each_interval(
         let (ea, va) = ma.segment(ka);
         let (eb, vb) = mb.segment(kb);
         let t1 = ea.min(eb).min(to);
-        let pa = ma.position(a, ka, va, t);
-        let pb = mb.position(b, kb, vb, t);
+        let pa = ma.position(ka, va, t);
+        let pb = mb.position(kb, vb, t);
         if t1 > t {
             f(t, t1 - t, pa, pb, va, vb);
         }
@@ -234,42 +386,6 @@ fn for_each_interval(
             break;
         }
     }
-}
-
-/// End time and velocity of segment k (infinite end and zero velocity once arrived).
-fn segment_motion(p: &TimedPath, k: usize) -> (f64, DVec3) {
-    let last = p.abs.len() - 1;
-    if k >= last || p.speed <= 0.0 {
-        return (f64::INFINITY, DVec3::ZERO);
-    }
-    let (t0, t1) = (p.time_at(k), p.time_at(k + 1));
-    if t1 <= t0 {
-        return (t1, DVec3::ZERO);
-    }
-    (t1, (p.abs[k + 1] - p.abs[k]) / (t1 - t0))
-}
-
-/// First time the UAV is farther than `r` (horizontally) from (cx, cy); infinite if never.
-fn leave_time(p: &TimedPath, cx: f64, cy: f64, r: f64) -> f64 {
-    for k in 0..p.abs.len().saturating_sub(1) {
-        let (a, b) = (p.abs[k], p.abs[k + 1]);
-        if let Some(f) = first_crossing(a, b, cx, cy, r) {
-            return p.time_at(k) + f * (p.time_at(k + 1) - p.time_at(k));
-        }
-    }
-    f64::INFINITY
-}
-
-/// Last time the UAV comes within `r` (horizontally) of (cx, cy) for good; 0 if always inside.
-fn enter_time(p: &TimedPath, cx: f64, cy: f64, r: f64) -> f64 {
-    for k in (0..p.abs.len().saturating_sub(1)).rev() {
-        let (a, b) = (p.abs[k + 1], p.abs[k]);
-        if let Some(f) = first_crossing(a, b, cx, cy, r) {
-            // Walking backwards from waypoint k + 1: fraction f of the way back to k.
-            return p.time_at(k + 1) - f * (p.time_at(k + 1) - p.time_at(k));
-        }
-    }
-    0.0
 }
 
 /// Fraction along a-b where the horizontal distance to (cx, cy) first exceeds r, if it does.
