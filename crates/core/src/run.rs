@@ -93,13 +93,30 @@ pub fn run_with_uav_trace(
     progress: &mut dyn FnMut(&IterationRecord),
 ) -> (RunResult, Vec<Vec<f64>>) {
     let problem = PlanningProblem::new(world, req.method.encoding, req.method.init);
-    let mut trace = Vec::new();
+    let mut trace: Vec<Vec<f64>> = Vec::new();
     let mut observing = std::time::Duration::ZERO;
+    // The best plan changes in few iterations (and under coevolution in one UAV at a
+    // time): an unchanged best repeats its row, and the buffers persist so that proximity
+    // re-sweeps only the pairs whose motion changed. Both are exact (same bits as a fresh
+    // assessment; `crates/io/tests/incremental.rs`).
+    let mut last_best: Vec<f64> = Vec::new();
+    let mut scratch = crate::cost::Scratch::default();
     let mut observer = |r: &IterationRecord, best_x: &[f64]| {
         let t0 = Instant::now();
         if !best_x.is_empty() {
-            let a = crate::cost::assess(world, &problem.decode(best_x), false);
-            trace.push(a.per_uav.iter().map(|u| u.cost).collect());
+            let row = match trace.last() {
+                Some(row) if last_best.as_slice() == best_x => row.clone(),
+                _ => {
+                    let mut sink =
+                        crate::feasibility::ViolationSink::new(world.spec.planning.profile);
+                    let plan = problem.decode(best_x);
+                    let _ = crate::cost::assess_into(world, &plan, &mut scratch, &mut sink, false);
+                    last_best.clear();
+                    last_best.extend_from_slice(best_x);
+                    scratch.reports().iter().map(|u| u.cost).collect()
+                }
+            };
+            trace.push(row);
         }
         progress(r);
         observing += t0.elapsed();
