@@ -26,7 +26,7 @@ enum Command {
     /// List built-in scenarios or print one as TOML.
     #[command(subcommand)]
     Scenario(ScenarioCommand),
-    /// Plan a scenario (default: paper Case 1 with DLS-SMPSO) and write plan.json.
+    /// Plan a scenario (default: paper Case 1 with the swarmplan method) and write plan.json.
     Plan(commands::plan::PlanArgs),
     /// Cost breakdown and every violation of a plan file.
     Evaluate(commands::evaluate::EvaluateArgs),
