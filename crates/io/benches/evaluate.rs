@@ -113,22 +113,21 @@ fn paper_cases(c: &mut Criterion) {
     }
 }
 
-fn scale(c: &mut Criterion) {
-    let mut group = c.benchmark_group("scale");
+/// One benchmark per generated fleet size, each cycling through the inputs that `inputs`
+/// makes for that problem.
+fn scale_group(
+    c: &mut Criterion,
+    name: &str,
+    inputs: impl Fn(&PlanningProblem<'_>) -> Vec<Vec<f64>>,
+) {
+    let mut group = c.benchmark_group(name);
     group.sample_size(20);
     for n in [5, 10, 20, 50, 100] {
         let loaded = load_spec(&format!("gen-s1-u{n}-t12")).expect("a generated scenario");
         let world = build_world(&loaded, None).expect("a generated world");
         let method = Method::preset("swarmplan").expect("a preset");
         let problem = PlanningProblem::new(&world, method.encoding, method.init);
-        let mut rng = rng_from_seed(44);
-        let xs: Vec<Vec<f64>> = (0..64)
-            .map(|_| {
-                let mut x = vec![0.0; problem.dimension()];
-                problem.sample_initial(&mut rng, &mut x);
-                x
-            })
-            .collect();
+        let xs = inputs(&problem);
         let mut i = 0;
         group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
             b.iter(|| {
@@ -140,27 +139,25 @@ fn scale(c: &mut Criterion) {
     group.finish();
 }
 
-fn scale_incremental(c: &mut Criterion) {
-    let mut group = c.benchmark_group("scale-incremental");
-    group.sample_size(20);
-    for n in [5, 10, 20, 50, 100] {
-        let loaded = load_spec(&format!("gen-s1-u{n}-t12")).expect("a generated scenario");
-        let world = build_world(&loaded, None).expect("a generated world");
-        let method = Method::preset("swarmplan").expect("a preset");
-        let problem = PlanningProblem::new(&world, method.encoding, method.init);
+/// A vector of the swarmplan method's initialisation, from `rng`.
+fn initial(problem: &PlanningProblem<'_>, rng: &mut swarmplan_core::rng::Rng) -> Vec<f64> {
+    let mut x = vec![0.0; problem.dimension()];
+    problem.sample_initial(rng, &mut x);
+    x
+}
+
+fn scale(c: &mut Criterion) {
+    scale_group(c, "scale", |problem| {
         let mut rng = rng_from_seed(44);
-        let mut x = vec![0.0; problem.dimension()];
-        problem.sample_initial(&mut rng, &mut x);
-        let walk = one_block_walk(&problem, &x, 64);
-        let mut i = 0;
-        group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
-            b.iter(|| {
-                i = (i + 1) % walk.len();
-                std::hint::black_box(problem.evaluate(std::hint::black_box(&walk[i])))
-            });
-        });
-    }
-    group.finish();
+        (0..64).map(|_| initial(problem, &mut rng)).collect()
+    });
+}
+
+fn scale_incremental(c: &mut Criterion) {
+    scale_group(c, "scale-incremental", |problem| {
+        let mut rng = rng_from_seed(44);
+        one_block_walk(problem, &initial(problem, &mut rng), 64)
+    });
 }
 
 criterion_group!(benches, paper_cases, scale, scale_incremental);
