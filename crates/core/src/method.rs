@@ -18,7 +18,8 @@
 //! | `gwo` | gwo | spherical | uniform | Mirjalili et al. 2014 |
 //! | `abc` | abc | spherical | uniform | Karaboga 2005 |
 //! | `pso-uniform`, `apso-uniform` | pso | cartesian / angle | uniform | ablations: the first build's PSO and APSO |
-//! | `swarmplan` | coop | spherical | uniform | swarmplan's own: cooperative coevolution, feasibility first |
+//! | `swarmplan` | coop | spherical | line | swarmplan's own: cooperative coevolution, feasibility first, from bowed start-goal lines |
+//! | `swarmplan-uniform` | coop | spherical | uniform | ablation: swarmplan's method from a uniform box (its default before; docs/results.md) |
 //! | `lshade` | lshade | spherical | uniform | Tanabe & Fukunaga 2014 (a modern baseline, on the encoding the paper's methods use) |
 //! | `cmaes` | cmaes | spherical | uniform | Hansen & Ostermeier 2001 with IPOP restarts (Auger & Hansen 2005) |
 //!
@@ -71,7 +72,7 @@ const fn preset(
 }
 
 /// Every named method, the paper's first, in table order.
-pub const PRESETS: [Preset; 13] = [
+pub const PRESETS: [Preset; 14] = [
     preset(
         "pso",
         OptimizerKind::Pso,
@@ -144,6 +145,13 @@ pub const PRESETS: [Preset; 13] = [
     ),
     preset(
         "swarmplan",
+        OptimizerKind::Coop,
+        EncodingKind::Spherical,
+        InitKind::Line,
+        false,
+    ),
+    preset(
+        "swarmplan-uniform",
         OptimizerKind::Coop,
         EncodingKind::Spherical,
         InitKind::Uniform,
@@ -219,7 +227,7 @@ impl fmt::Display for Method {
 
 /// A method name that is neither a preset nor `optimizer/encoding/init`.
 #[derive(Debug, Error, Clone, PartialEq, Eq)]
-#[error("unknown method {0:?}; expected a preset (pso, apso, qpso, gwo, abc, spso, dls-smpso, dls-smpso-exemplar, pso-uniform, apso-uniform, swarmplan, lshade, cmaes) or optimizer/encoding/init such as pso/spherical/line")]
+#[error("unknown method {0:?}; expected a preset (pso, apso, qpso, gwo, abc, spso, dls-smpso, dls-smpso-exemplar, pso-uniform, apso-uniform, swarmplan, swarmplan-uniform, lshade, cmaes) or optimizer/encoding/init such as pso/spherical/line")]
 pub struct UnknownMethod(pub String);
 
 impl FromStr for Method {

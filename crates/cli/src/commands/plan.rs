@@ -24,8 +24,8 @@ pub struct PlanArgs {
     #[command(flatten)]
     pub scenario: ScenarioArgs,
     /// Method: a preset (swarmplan, the default; pso, apso, qpso, gwo, abc, spso, dls-smpso,
-    /// dls-smpso-exemplar, pso-uniform, apso-uniform) or optimizer/encoding/init (e.g.
-    /// pso/spherical/line).
+    /// dls-smpso-exemplar, pso-uniform, apso-uniform, swarmplan-uniform, lshade, cmaes) or
+    /// optimizer/encoding/init (e.g. pso/spherical/line).
     #[arg(long = "method", visible_alias = "algo", default_value = "swarmplan")]
     pub method: Method,
     /// Replace the method's encoding: spherical, cartesian, angle.
