@@ -5,6 +5,7 @@
 //! the world validates the spec, so evaluation never has to check anything.
 
 pub mod channel;
+pub mod enclosure;
 pub mod energy;
 pub mod horizon;
 pub mod procedural;

@@ -8,6 +8,7 @@
 
 use glam::DVec2;
 
+use super::enclosure::walled_in_starts;
 use super::spec::ScenarioSpec;
 use super::threat::Threat;
 
@@ -98,7 +99,56 @@ pub fn unreachable_feasibility(spec: &ScenarioSpec) -> Vec<Unreachable> {
             reason: format!("its height above ground is {} m, below the terrain", g[2]),
         });
     }
+    walled_in(spec, &mut out);
     out
+}
+
+/// One entry per start that threats wall off from the goal (UAVs sharing it named once).
+fn walled_in(spec: &ScenarioSpec, out: &mut Vec<Unreachable>) {
+    let mut groups: Vec<(Vec<usize>, Vec<usize>)> = Vec::new();
+    for (k, walls) in walled_in_starts(spec) {
+        let start = spec.uavs[k].start;
+        match groups
+            .iter_mut()
+            .find(|(uavs, _)| spec.uavs[uavs[0]].start == start)
+        {
+            Some((uavs, _)) => uavs.push(k),
+            None => groups.push((vec![k], walls)),
+        }
+    }
+    for (uavs, walls) in groups {
+        let (k, start) = (uavs[0], spec.uavs[uavs[0]].start);
+        let also = if uavs.len() > 1 {
+            format!(" (so is the start of uavs {})", list(&uavs[1..]))
+        } else {
+            String::new()
+        };
+        out.push(Unreachable {
+            field: format!("uavs[{k}].start"),
+            reason: format!(
+                "({}, {}) is walled off from the goal by the hard zones (radius + UAV size {}) of threats {}: every way out of the region around it crosses one{also}",
+                start[0],
+                start[1],
+                spec.uavs[k].size,
+                list(&walls)
+            ),
+        });
+    }
+}
+
+/// `[a, b, c]` for indices, the middle elided past 12 entries.
+fn list(ix: &[usize]) -> String {
+    let shown: Vec<String> = if ix.len() > 12 {
+        ix[..6]
+            .iter()
+            .map(usize::to_string)
+            .chain(std::iter::once(format!("... ({} in all)", ix.len())))
+            .chain(ix[ix.len() - 3..].iter().map(usize::to_string))
+            .collect()
+    } else {
+        ix.iter().map(usize::to_string).collect()
+    };
+    format!("[{}]", shown.join(", "))
 }
 
 fn in_threat(p: DVec2, d: f64, j: usize, t: &Threat, size: f64) -> String {
