@@ -106,8 +106,11 @@ impl Problem {
             .transpose()?;
         let init = init
             .map(|i| {
-                i.parse::<InitKind>()
-                    .map_err(|_| bad(format!("init: expected uniform or line, got `{i}`")))
+                i.parse::<InitKind>().map_err(|_| {
+                    bad(format!(
+                        "init: expected uniform, line or corridor, got `{i}`"
+                    ))
+                })
             })
             .transpose()?;
         let method = args::method(method)?.with(encoding, init);

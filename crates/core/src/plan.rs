@@ -1,5 +1,6 @@
 //! A plan: one path per UAV, each a list of waypoints [x, y, z above ground] from the start
-//! to the goal (both included). This is what encodings decode into and what `evaluate` reads.
+//! to the goal (both included), and the fleet's pace (1 unless the scenario lets the planner
+//! choose it, `timing.pace`). This is what encodings decode into and what `evaluate` reads.
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -10,10 +11,32 @@ pub struct Path {
     pub waypoints: Vec<DVec3>,
 }
 
-/// All UAVs' paths.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+/// All UAVs' paths and the fleet's pace.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Plan {
     pub uavs: Vec<Path>,
+    /// Factor on the timing policy's preferred speed ([`crate::timing`]): 1 flies nearest
+    /// cruise, 1.3 is 30 % faster where the speed limits allow. Written only when not 1.
+    #[serde(default = "unit_pace", skip_serializing_if = "is_unit_pace")]
+    pub pace: f64,
+}
+
+impl Default for Plan {
+    fn default() -> Self {
+        Self {
+            uavs: Vec::new(),
+            pace: 1.0,
+        }
+    }
+}
+
+fn unit_pace() -> f64 {
+    1.0
+}
+
+#[allow(clippy::trivially_copy_pass_by_ref, clippy::float_cmp)]
+fn is_unit_pace(p: &f64) -> bool {
+    *p == 1.0
 }
 
 impl Plan {
@@ -29,6 +52,6 @@ impl Plan {
                     .collect(),
             })
             .collect();
-        Self { uavs }
+        Self { uavs, pace: 1.0 }
     }
 }

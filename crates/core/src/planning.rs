@@ -8,7 +8,7 @@
 use std::cell::RefCell;
 
 use crate::cost::{assess, assess_into, Assessment, Scratch};
-use crate::encoding::init::sample_line_plan;
+use crate::encoding::init::{sample_corridor_plan, sample_line_plan};
 use crate::encoding::{self, EncodingKind, Frame, InitKind, PathEncoding};
 use crate::feasibility::ViolationSink;
 use crate::plan::Plan;
@@ -23,6 +23,8 @@ pub struct PlanningProblem<'w> {
     kind: EncodingKind,
     init: InitKind,
     frame: Frame,
+    /// Threat-free corridors per UAV, computed once for the `corridor` initialisation.
+    corridors: Vec<Vec<glam::DVec2>>,
 }
 
 thread_local! {
@@ -32,12 +34,27 @@ thread_local! {
 impl<'w> PlanningProblem<'w> {
     #[must_use]
     pub fn new(world: &'w World, kind: EncodingKind, init: InitKind) -> Self {
+        let corridors = if init == InitKind::Corridor {
+            encoding::corridor::corridors(world)
+        } else {
+            Vec::new()
+        };
+        let mut path_encoding = encoding::build_along(kind, world, &corridors);
+        let timing = &world.spec.timing;
+        if timing.pace_is_free() {
+            path_encoding = Box::new(encoding::paced::Paced::new(
+                path_encoding,
+                world.uav_count(),
+                timing.pace,
+            ));
+        }
         Self {
             world,
-            encoding: encoding::build(kind, world),
+            encoding: path_encoding,
             kind,
             init,
             frame: Frame::of(world),
+            corridors,
         }
     }
 
@@ -76,6 +93,18 @@ impl<'w> PlanningProblem<'w> {
     }
 }
 
+impl PlanningProblem<'_> {
+    /// A pace uniform in the scenario's range when it is free (no draw otherwise, so runs
+    /// on a fixed pace keep their random streams).
+    fn draw_pace(&self, rng: &mut Rng, plan: &mut Plan) {
+        let [lo, hi] = self.world.spec.timing.pace;
+        if self.world.spec.timing.pace_is_free() {
+            let u: f64 = rand::Rng::random(rng);
+            plan.pace = lo + u * (hi - lo);
+        }
+    }
+}
+
 impl Problem for PlanningProblem<'_> {
     fn bounds(&self) -> &[Bound] {
         self.encoding.bounds()
@@ -105,9 +134,10 @@ impl Problem for PlanningProblem<'_> {
         })
     }
 
-    /// One UAV's path: 3 values per free waypoint.
+    /// One UAV's path: 3 values per free waypoint, and its pace value when the pace is free
+    /// ([`encoding::paced`]).
     fn block_size(&self) -> usize {
-        3 * self.frame.n
+        3 * self.frame.n + usize::from(self.world.spec.timing.pace_is_free())
     }
 
     fn sample_initial(&self, rng: &mut Rng, out: &mut [f64]) {
@@ -116,6 +146,13 @@ impl Problem for PlanningProblem<'_> {
             InitKind::Line => {
                 let mut plan = Plan::default();
                 sample_line_plan(&self.frame, rng, &mut plan);
+                self.draw_pace(rng, &mut plan);
+                self.encoding.encode_into(&plan, out);
+            }
+            InitKind::Corridor => {
+                let mut plan = Plan::default();
+                sample_corridor_plan(&self.frame, &self.corridors, rng, &mut plan);
+                self.draw_pace(rng, &mut plan);
                 self.encoding.encode_into(&plan, out);
             }
         }

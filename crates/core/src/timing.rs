@@ -7,6 +7,13 @@
 //!   safety term and the feasibility checker say so.
 //! - *cruise*: every UAV flies at its own cruise speed.
 //!
+//! Both scale the preferred speed by the plan's *pace* (1 unless the scenario's
+//! `timing.pace` range lets the planner choose it): common arrival prefers T / pace, then
+//! clamps as above; cruise flies pace times cruise. Why a pace: the channel varies in time,
+//! and a fleet that must fly nearest cruise can find itself mid-route exactly when the range
+//! drops (outside-1: R(t) under 500 m from 42 to 63 s with the UAVs 400 m from either ground
+//! node); flying faster or slower moves the fleet's position in that window.
+//!
 //! Positions at any time come from arc-length interpolation along the absolute-altitude
 //! polyline. Buffers are reused between evaluations (`fill` methods) to keep the hot path
 //! free of allocations.
@@ -147,6 +154,8 @@ impl TimedPath {
 #[derive(Debug, Clone, Default)]
 pub struct TimedPlan {
     pub paths: Vec<TimedPath>,
+    /// The plan's pace ([`Plan::pace`]).
+    pub pace: f64,
     /// Latest arrival (s).
     pub horizon: f64,
 }
@@ -162,6 +171,7 @@ impl TimedPlan {
     /// Recomputes geometry and schedule for `plan`, reusing buffers.
     pub fn fill(&mut self, world: &World, plan: &Plan) {
         let n = plan.uavs.len();
+        self.pace = plan.pace;
         self.paths.resize_with(n, TimedPath::default);
         for (tp, path) in self.paths.iter_mut().zip(&plan.uavs) {
             tp.fill_geometry(world, path);
@@ -175,6 +185,7 @@ impl TimedPlan {
     /// every corner, [`crate::flight`]), timed by the same policy on its own lengths.
     pub fn fill_flown(&mut self, world: &World, waypoints: &TimedPlan) {
         let n = waypoints.paths.len();
+        self.pace = waypoints.pace;
         self.paths.resize_with(n, TimedPath::default);
         for (u, (tp, wp)) in self.paths.iter_mut().zip(&waypoints.paths).enumerate() {
             crate::flight::flown_polyline(
@@ -208,16 +219,17 @@ impl TimedPlan {
         match world.spec.timing.policy {
             TimingPolicy::Cruise => {
                 for (tp, u) in self.paths.iter_mut().zip(uavs) {
-                    tp.speed = u.cruise_speed;
+                    tp.speed = u.cruise_speed * self.pace;
                     tp.arrival = tp.length / tp.speed;
                 }
             }
             TimingPolicy::CommonArrival => {
-                let t = common_arrival_time(
+                let t = common_arrival_time_at_pace(
                     self.paths
                         .iter()
                         .zip(uavs)
                         .map(|(p, u)| (p.length, u.cruise_speed, u.speed[0], u.speed[1])),
+                    self.pace,
                 );
                 for tp in &mut self.paths {
                     tp.speed = if t > 0.0 { tp.length / t } else { 0.0 };
@@ -244,6 +256,16 @@ impl TimedPlan {
 /// The common arrival time T for paths given as (length, cruise, v_min, v_max).
 #[must_use]
 pub fn common_arrival_time(paths: impl Iterator<Item = (f64, f64, f64, f64)> + Clone) -> f64 {
+    common_arrival_time_at_pace(paths, 1.0)
+}
+
+/// [`common_arrival_time`] with the preferred time divided by `pace` (the speeds nearest
+/// `pace` times cruise) before it is clamped to the speed limits.
+#[must_use]
+pub fn common_arrival_time_at_pace(
+    paths: impl Iterator<Item = (f64, f64, f64, f64)> + Clone,
+    pace: f64,
+) -> f64 {
     let (mut num, mut den) = (0.0, 0.0);
     let (mut lo, mut hi) = (0.0_f64, f64::INFINITY);
     for (l, c, vmin, vmax) in paths {
@@ -255,7 +277,7 @@ pub fn common_arrival_time(paths: impl Iterator<Item = (f64, f64, f64, f64)> + C
     if num == 0.0 {
         return 0.0;
     }
-    let preferred = num / den;
+    let preferred = num / den / pace;
     if lo <= hi {
         preferred.clamp(lo, hi)
     } else {

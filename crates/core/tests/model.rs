@@ -111,6 +111,7 @@ fn a_segment_clear_of_a_cylinder_costs_nothing_and_one_through_it_violates() {
 fn a_ninety_degree_turn_violates_and_a_thirty_degree_one_does_not() {
     let w = World::new(spec(&[[100.0, 100.0, 150.0]]), flat()).unwrap();
     let sharp = Plan {
+        pace: 1.0,
         uavs: vec![path(&[
             [100.0, 100.0, 150.0],
             [900.0, 100.0, 150.0],
@@ -124,6 +125,7 @@ fn a_ninety_degree_turn_violates_and_a_thirty_degree_one_does_not() {
     // A slight bend off the diagonal: headings 38.7 and 51.3 deg, a 12.7 deg turn.
     let mid = [550.0, 450.0, 150.0];
     let gentle = Plan {
+        pace: 1.0,
         uavs: vec![path(&[[100.0, 100.0, 150.0], mid, [900.0, 900.0, 150.0]])],
     };
     assert!(
@@ -137,6 +139,7 @@ fn a_ninety_degree_turn_violates_and_a_thirty_degree_one_does_not() {
 fn a_steep_climb_violates() {
     let w = World::new(spec(&[[100.0, 100.0, 150.0]]), flat()).unwrap();
     let plan = Plan {
+        pace: 1.0,
         uavs: vec![path(&[
             [100.0, 100.0, 100.0],
             [130.0, 130.0, 200.0],
@@ -170,6 +173,7 @@ fn crossing_at_the_same_time_violates_separation_and_at_different_times_does_not
         [900.0, 500.0, 150.0],
     ]);
     let plan = Plan {
+        pace: 1.0,
         uavs: vec![a.clone(), b],
     };
     let v = check(&w, &plan);
@@ -192,6 +196,7 @@ fn crossing_at_the_same_time_violates_separation_and_at_different_times_does_not
     s2.timing.policy = TimingPolicy::Cruise;
     let w2 = World::new(s2, flat()).unwrap();
     let plan2 = Plan {
+        pace: 1.0,
         uavs: vec![a, late],
     };
     assert!(
@@ -247,6 +252,7 @@ fn terrain_in_the_way_violates_clearance() {
     let t = Terrain::new(nx, nx, (0.0, 0.0), (10.0, 10.0), h, Sampling::Bilinear).unwrap();
     let w = World::new(spec(&[[100.0, 100.0, 150.0]]), t).unwrap();
     let plan = Plan {
+        pace: 1.0,
         uavs: vec![path(&[
             [100.0, 100.0, 150.0],
             [200.0, 200.0, 150.0],
@@ -347,6 +353,7 @@ fn bent(corner: [f64; 2], turns_deg: &[f64], legs: &[f64]) -> (ScenarioSpec, Pla
     (
         s,
         Plan {
+            pace: 1.0,
             uavs: vec![path(&points)],
         },
     )
@@ -446,6 +453,7 @@ fn repeated_waypoints_outside_the_map_are_reported_at_the_waypoint() {
     let mut s = spec(&[[100.0, 100.0, 150.0]]);
     s.goal.position = [900.0, 100.0, 150.0];
     let plan = Plan {
+        pace: 1.0,
         uavs: vec![path(&[
             [100.0, 100.0, 150.0],
             [500.0, 100.0, 150.0],
@@ -479,6 +487,7 @@ fn a_flight_longer_than_the_swept_horizon_is_a_communication_violation_not_a_han
     s.communication.requirement = CommRequirement::Relay;
     let w = World::new(s, flat()).unwrap();
     let plan = Plan {
+        pace: 1.0,
         uavs: vec![path(&[
             [100.0, 100.0, 150.0],
             [500.0, 500.0, 1e50],
@@ -497,4 +506,76 @@ fn a_flight_longer_than_the_swept_horizon_is_a_communication_violation_not_a_han
     assert!(!check(&w, &straight)
         .iter()
         .any(|v| v.detail.contains("assessed over the first")));
+}
+
+#[test]
+fn the_pace_scales_the_preferred_speed_within_the_limits() {
+    use swarmplan_core::timing::TimedPlan;
+    let w = World::new(spec(&[[100.0, 100.0, 150.0]]), flat()).unwrap();
+    let line = |pace| Plan {
+        pace,
+        uavs: vec![path(&[[100.0, 100.0, 150.0], [900.0, 900.0, 150.0]])],
+    };
+    let speed = |pace| TimedPlan::new(&w, &line(pace)).paths[0].speed;
+    // Cruise 15 m/s, limits [5, 25].
+    assert!((speed(1.0) - 15.0).abs() < 1e-9);
+    assert!((speed(1.5) - 22.5).abs() < 1e-9);
+    assert!((speed(0.5) - 7.5).abs() < 1e-9);
+    assert!((speed(3.0) - 25.0).abs() < 1e-9, "clamped to v_max");
+    let arrival = TimedPlan::new(&w, &line(1.25)).paths[0].arrival;
+    assert!((arrival - 800.0 * 2f64.sqrt() / 18.75).abs() < 1e-9);
+}
+
+#[test]
+fn a_free_pace_is_one_more_variable_per_uav_and_the_plan_flies_it() {
+    use swarmplan_core::encoding::{EncodingKind, InitKind};
+    use swarmplan_core::planning::PlanningProblem;
+    use swarmplan_core::problem::Problem;
+    use swarmplan_core::rng::rng_from_seed;
+    let starts = [[100.0, 100.0, 150.0], [150.0, 80.0, 150.0]];
+    let fixed = World::new(spec(&starts), flat()).unwrap();
+    let mut free_spec = spec(&starts);
+    free_spec.timing.pace = [0.5, 1.5];
+    let free = World::new(free_spec, flat()).unwrap();
+    let n = fixed.spec.planning.waypoints;
+    for kind in [EncodingKind::Spherical, EncodingKind::Cartesian] {
+        let a = PlanningProblem::new(&fixed, kind, InitKind::Line);
+        let b = PlanningProblem::new(&free, kind, InitKind::Line);
+        assert_eq!(a.block_size(), 3 * n);
+        assert_eq!(b.block_size(), 3 * n + 1);
+        assert_eq!(b.bounds().len(), 2 * (3 * n + 1));
+        let mut x = vec![0.0; b.bounds().len()];
+        let mut rng = rng_from_seed(5);
+        let mut paces = Vec::new();
+        for _ in 0..20 {
+            b.sample_initial(&mut rng, &mut x);
+            let plan = b.decode(&x);
+            assert!((0.5..=1.5).contains(&plan.pace));
+            paces.push(plan.pace);
+            // The evaluation is that of the decoded plan, pace included.
+            let e = b.evaluate(&x);
+            let fresh = assess(&free, &plan, false);
+            assert_eq!(e.cost.to_bits(), fresh.total.to_bits());
+            // Paced T is the pace-1 T over the pace (the speeds stay inside [5, 25] here).
+            let at_one = assess(
+                &free,
+                &Plan {
+                    pace: 1.0,
+                    ..plan.clone()
+                },
+                false,
+            );
+            let (t, t1) = (fresh.per_uav[0].arrival_s, at_one.per_uav[0].arrival_s);
+            assert!(
+                (t * plan.pace - t1).abs() < 1e-9 * t1,
+                "{t} {t1} {}",
+                plan.pace
+            );
+        }
+        assert!(paces.iter().any(|&p| p < 0.9) && paces.iter().any(|&p| p > 1.1));
+        // The fixed-pace problem decodes pace 1, whatever was decoded before on the thread.
+        let mut y = vec![0.0; a.bounds().len()];
+        a.sample_initial(&mut rng, &mut y);
+        assert_eq!(a.decode(&y).pace, 1.0);
+    }
 }

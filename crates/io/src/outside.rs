@@ -12,6 +12,13 @@
 //! Threats keep their axis and radius; their drawn height is the template's (the model's
 //! cylinders are unbounded in height, and the instance's drawn heights go below zero).
 //! The terrain is read in the `spso-pixels` frame the data's README states.
+//!
+//! The fleet's pace is free within the speed limits (`timing.pace` = [v_min, v_max] /
+//! cruise, [`swarmplan_core::encoding::paced`]): the instances give no timing, their routes
+//! are longer than Case 1's, and at the template's fixed pace nearest cruise every plan of
+//! 20 runs had the whole fleet mid-route, out of range of both ground nodes, while the
+//! channel's range was at its lowest (outside-1: R(t) below 500 m from 42 to 63 s). The
+//! paper cases keep the fixed pace.
 
 use std::path::{Path, PathBuf};
 
@@ -150,6 +157,12 @@ pub fn from_instance(path: &Path, uavs: usize, name: &str) -> Result<ScenarioSpe
         uavs
     ];
     spec.goal.position = inst.goal;
+    if template.cruise_speed > 0.0 {
+        spec.timing.pace = [
+            template.speed[0] / template.cruise_speed,
+            template.speed[1] / template.cruise_speed,
+        ];
+    }
     spec.communication.interference.clear();
     let length = (inst.goal[0] - inst.start[0]).hypot(inst.goal[1] - inst.start[1]);
     size_batteries(&mut spec, length);

@@ -71,7 +71,19 @@ pub struct PlanFile {
     /// [`swarmplan_core::world::terrain::Terrain::fingerprint`] of the terrain it was made on.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub terrain_fingerprint: Option<String>,
+    /// The fleet's pace ([`Plan::pace`]; absent: 1, nearest cruise).
+    #[serde(default = "unit_pace", skip_serializing_if = "is_unit_pace")]
+    pub pace: f64,
     pub uavs: Vec<UavEntry>,
+}
+
+fn unit_pace() -> f64 {
+    1.0
+}
+
+#[allow(clippy::trivially_copy_pass_by_ref, clippy::float_cmp)]
+fn is_unit_pace(p: &f64) -> bool {
+    *p == 1.0
 }
 
 /// Whether a plan's recorded scenario and terrain must match the world it is read into.
@@ -164,7 +176,19 @@ pub fn parse_plan(
             ),
         ));
     }
-    let mut plan = Plan::default();
+    if !(file.pace.is_finite() && file.pace > 0.0) {
+        return Err(invalid(
+            "pace".into(),
+            format!(
+                "expected a positive factor on the preferred speed (1 = nearest cruise), got {}",
+                file.pace
+            ),
+        ));
+    }
+    let mut plan = Plan {
+        pace: file.pace,
+        ..Plan::default()
+    };
     for (i, u) in file.uavs.iter().enumerate() {
         if u.waypoints.len() < 2 {
             return Err(invalid(
@@ -289,6 +313,7 @@ pub fn plan_file(world: &World, plan: &Plan) -> PlanFile {
     PlanFile {
         scenario: Some(world.spec.name.clone()),
         terrain_fingerprint: Some(world.terrain.fingerprint()),
+        pace: plan.pace,
         uavs,
     }
 }

@@ -60,3 +60,60 @@ fn a_missing_outside_instance_names_where_it_looked() {
         "{e}"
     );
 }
+
+#[test]
+fn outside_instances_leave_the_pace_free_and_plan_files_keep_it() {
+    use swarmplan_core::plan::Plan;
+    use swarmplan_io::plan_file::{parse_plan, plan_file, Provenance};
+    let Some(_) = reference_files(&["outside/outside-1.json", "outside/outside-1.asc.gz"]).unwrap()
+    else {
+        return;
+    };
+    let loaded = load_spec("outside-1").unwrap();
+    let t = &loaded.spec.timing;
+    assert!(t.pace_is_free());
+    let u = &loaded.spec.uavs[0];
+    assert_eq!(
+        t.pace,
+        [u.speed[0] / u.cruise_speed, u.speed[1] / u.cruise_speed]
+    );
+    let world = build_world(&loaded, None).unwrap();
+    let starts: Vec<_> = (0..world.uav_count()).map(|i| world.start(i)).collect();
+    let plan = Plan {
+        pace: 1.4,
+        ..Plan::straight(&starts, world.goal, 3)
+    };
+    let text = serde_json::to_string(&plan_file(&world, &plan)).unwrap();
+    assert!(text.contains("\"pace\":1.4"), "{text}");
+    let back = parse_plan(&text, "p.json", &world, Provenance::MustMatch).unwrap();
+    assert_eq!(back, plan);
+    // Speeds in the file are those of the pace: 1.4 x the pace-1 ones (no limit reached).
+    let at_one = serde_json::to_value(plan_file(
+        &world,
+        &Plan {
+            pace: 1.0,
+            ..plan.clone()
+        },
+    ))
+    .unwrap();
+    let paced = serde_json::to_value(plan_file(&world, &plan)).unwrap();
+    let v = |j: &serde_json::Value| j["uavs"][0]["speed_mps"][0].as_f64().unwrap();
+    assert!((v(&paced) - 1.4 * v(&at_one)).abs() < 1e-9);
+    assert!(!serde_json::to_string(&plan_file(
+        &world,
+        &Plan {
+            pace: 1.0,
+            ..plan.clone()
+        }
+    ))
+    .unwrap()
+    .contains("pace"));
+    let bad = text.replace("\"pace\":1.4", "\"pace\":-2.0");
+    let e = parse_plan(&bad, "p.json", &world, Provenance::MustMatch)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("p.json") && e.contains("pace") && e.contains("-2"),
+        "{e}"
+    );
+}

@@ -31,7 +31,7 @@ pub struct PlanArgs {
     /// Replace the method's encoding: spherical, cartesian, angle.
     #[arg(long)]
     pub encoding: Option<EncodingKind>,
-    /// Replace the method's initialisation: uniform, line.
+    /// Replace the method's initialisation: uniform, line, corridor (threat-free corridor, docs/method.md).
     #[arg(long)]
     pub init: Option<InitKind>,
     /// Seed of the run (default: the scenario's `planning.seed`).
@@ -400,6 +400,13 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             result.outcome.iterations,
             result.seconds
         );
+        let timing = &world.spec.timing;
+        if timing.pace_is_free() {
+            println!(
+                "pace {:.3} (chosen in timing.pace [{}, {}]; 1 = nearest cruise)",
+                result.plan.pace, timing.pace[0], timing.pace[1]
+            );
+        }
         println!(
             "wrote {}, {}, {} and {}",
             plan_path.display(),

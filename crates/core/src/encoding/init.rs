@@ -17,10 +17,11 @@ use std::f64::consts::PI;
 use std::fmt;
 use std::str::FromStr;
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use rand::Rng as _;
 use serde::{Deserialize, Serialize};
 
+use super::corridor::resample;
 use super::Frame;
 use crate::plan::Plan;
 use crate::rng::Rng;
@@ -36,19 +37,28 @@ pub enum InitKind {
     /// `|a1| <= LINE_SPREAD L`, `|a2| <= LINE_SPREAD L / 2` (L the start-goal distance), at a
     /// random height above ground held along the path; then encoded.
     Line,
+    /// Free waypoints on the UAV's threat-free corridor ([`super::corridor`]; at its corners
+    /// and spread by length between them), displaced sideways by the `line` bow scaled to
+    /// `CORRIDOR_SPREAD` of the start-goal distance, at a random height above ground held
+    /// along the path; then encoded. A UAV without a corridor (walled in) is drawn as `line`.
+    Corridor,
 }
+
+/// Largest sideways bow of a `corridor` path, as a share of its start-goal distance.
+pub const CORRIDOR_SPREAD: f64 = 0.01;
 
 /// Largest sideways bow of a `line` path, as a share of its start-goal distance.
 pub const LINE_SPREAD: f64 = 0.25;
 
 impl InitKind {
-    pub const ALL: [Self; 2] = [Self::Uniform, Self::Line];
+    pub const ALL: [Self; 3] = [Self::Uniform, Self::Line, Self::Corridor];
 
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
             Self::Uniform => "uniform",
             Self::Line => "line",
+            Self::Corridor => "corridor",
         }
     }
 }
@@ -65,7 +75,9 @@ impl FromStr for InitKind {
         Self::ALL
             .into_iter()
             .find(|k| k.name().eq_ignore_ascii_case(s))
-            .ok_or_else(|| format!("unknown initialisation `{s}`; expected uniform or line"))
+            .ok_or_else(|| {
+                format!("unknown initialisation `{s}`; expected uniform, line or corridor")
+            })
     }
 }
 
@@ -76,25 +88,52 @@ fn uniform(lo: f64, hi: f64, rng: &mut Rng) -> f64 {
 
 /// A plan drawn by the `line` sampler: every UAV's free waypoints near its start-goal line.
 pub fn sample_line_plan(frame: &Frame, rng: &mut Rng, plan: &mut Plan) {
+    sample_bowed_plan(frame, &[], rng, plan);
+}
+
+/// A plan drawn by the `corridor` sampler: every UAV's free waypoints near its corridor
+/// (`corridors[i]`, from [`super::corridor::corridors`]; an empty one means the line).
+pub fn sample_corridor_plan(
+    frame: &Frame,
+    corridors: &[Vec<DVec2>],
+    rng: &mut Rng,
+    plan: &mut Plan,
+) {
+    sample_bowed_plan(frame, corridors, rng, plan);
+}
+
+/// Free waypoints along each UAV's guide (its corridor, resampled with its corners, when it has one of at
+/// least two points, else the start-goal line), bowed sideways, at one random height.
+fn sample_bowed_plan(frame: &Frame, corridors: &[Vec<DVec2>], rng: &mut Rng, plan: &mut Plan) {
     frame.prepare(plan);
     let n = frame.n;
-    for (path, s) in plan.uavs.iter_mut().zip(&frame.starts) {
+    for (i, (path, s)) in plan.uavs.iter_mut().zip(&frame.starts).enumerate() {
         let d = (frame.goal - *s).truncate();
         let length = d.length();
         let (dir, side) = if length > 0.0 {
             let u = d / length;
-            (u, glam::DVec2::new(-u.y, u.x))
+            (u, DVec2::new(-u.y, u.x))
         } else {
-            (glam::DVec2::X, glam::DVec2::Y)
+            (DVec2::X, DVec2::Y)
         };
-        let h = LINE_SPREAD * length;
+        let guide = corridors.get(i).filter(|c| c.len() >= 2);
+        let spread = if guide.is_some() {
+            CORRIDOR_SPREAD
+        } else {
+            LINE_SPREAD
+        };
+        let h = spread * length;
         let a1 = uniform(-h, h, rng);
         let a2 = uniform(-0.5 * h, 0.5 * h, rng);
         let z = uniform(frame.z[0], frame.z[1], rng);
+        let guided = guide.map(|c| resample(c, n));
         for k in 1..=n {
             let t = k as f64 / (n + 1) as f64;
             let bow = a1 * (PI * t).sin() + a2 * (2.0 * PI * t).sin();
-            let p = s.truncate() + dir * (t * length) + side * bow;
+            let on = guided
+                .as_ref()
+                .map_or_else(|| s.truncate() + dir * (t * length), |g| g[k - 1]);
+            let p = on + side * bow;
             path.waypoints[k] = DVec3::new(
                 p.x.clamp(frame.x[0], frame.x[1]),
                 p.y.clamp(frame.y[0], frame.y[1]),

@@ -7,7 +7,9 @@
 
 pub mod angle;
 pub mod cartesian;
+pub mod corridor;
 pub mod init;
+pub mod paced;
 pub mod spherical;
 
 pub use init::InitKind;
@@ -119,8 +121,9 @@ impl Frame {
         3 * self.n * self.starts.len()
     }
 
-    /// Resizes `plan` to the fleet with n + 2 waypoints each, start and goal set.
+    /// Resizes `plan` to the fleet with n + 2 waypoints each, start and goal set, pace 1.
     pub fn prepare(&self, plan: &mut Plan) {
+        plan.pace = 1.0;
         plan.uavs.resize_with(self.starts.len(), Default::default);
         for (path, s) in plan.uavs.iter_mut().zip(&self.starts) {
             path.waypoints.resize(self.n + 2, DVec3::ZERO);
@@ -133,15 +136,27 @@ impl Frame {
 /// Builds the encoding `kind` for `world`.
 #[must_use]
 pub fn build(kind: EncodingKind, world: &World) -> Box<dyn PathEncoding> {
+    build_along(kind, world, &[])
+}
+
+/// Builds the encoding `kind` for `world`, the spherical one with its heading sectors along
+/// `guides` ([`spherical::Spherical::along_guides`]; the others ignore them).
+#[must_use]
+pub fn build_along(
+    kind: EncodingKind,
+    world: &World,
+    guides: &[Vec<glam::DVec2>],
+) -> Box<dyn PathEncoding> {
     let frame = Frame::of(world);
     match kind {
-        EncodingKind::Spherical => Box::new(spherical::Spherical::new(
+        EncodingKind::Spherical => Box::new(spherical::Spherical::along_guides(
             frame,
             if world.spec.planning.spso_angles {
                 spherical::AngleConvention::Spso
             } else {
                 spherical::AngleConvention::Consistent
             },
+            guides,
         )),
         EncodingKind::Cartesian => Box::new(cartesian::Cartesian::new(frame)),
         EncodingKind::Angle => Box::new(angle::Angle::new(frame, false)),
@@ -256,5 +271,46 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn a_corridor_plan_round_trips_only_with_sectors_along_it() {
+        // A corridor that first heads north-west, 80 degrees off the start-goal bearing of
+        // 41.6 degrees (round a threat), then turns to the goal.
+        let f = frame();
+        let corridor = vec![
+            f.starts[0].truncate(),
+            glam::DVec2::new(60.0, 400.0),
+            glam::DVec2::new(350.0, 650.0),
+            f.goal.truncate(),
+        ];
+        let guides = vec![corridor.clone(), corridor];
+        let mut rng = rng_from_seed(10);
+        let mut plan = Plan::default();
+        let frame1 = Frame {
+            starts: vec![f.starts[0]; 2],
+            ..f.clone()
+        };
+        init::sample_corridor_plan(&frame1, &guides, &mut rng, &mut plan);
+        let gap = |enc: &dyn PathEncoding| {
+            let mut x = vec![0.0; enc.bounds().len()];
+            enc.encode_into(&plan, &mut x);
+            assert!(x.iter().zip(enc.bounds()).all(|(v, b)| b.contains(*v)));
+            let again = enc.decode(&x);
+            plan.uavs
+                .iter()
+                .zip(&again.uavs)
+                .flat_map(|(p, q)| p.waypoints.iter().zip(&q.waypoints))
+                .map(|(a, b)| a.distance(*b))
+                .fold(0.0, f64::max)
+        };
+        let along = spherical::Spherical::along_guides(
+            frame1.clone(),
+            spherical::AngleConvention::Consistent,
+            &guides,
+        );
+        let plain = spherical::Spherical::new(frame1, spherical::AngleConvention::Consistent);
+        assert!(gap(&along) < 1e-6, "{}", gap(&along));
+        assert!(gap(&plain) > 50.0, "{}", gap(&plain));
     }
 }

@@ -11,6 +11,8 @@
 
 use std::f64::consts::FRAC_PI_4;
 
+use glam::DVec2;
+
 use super::{Frame, PathEncoding};
 use crate::plan::Plan;
 use crate::problem::Bound;
@@ -34,18 +36,45 @@ pub struct Spherical {
 impl Spherical {
     #[must_use]
     pub fn new(frame: Frame, convention: AngleConvention) -> Self {
+        Self::along_guides(frame, convention, &[])
+    }
+
+    /// As [`Spherical::new`], but UAV i's heading sector at free waypoint k is centred on the
+    /// bearing of `guides[i]` there (the `corridor` initialisation's path, resampled as it
+    /// is, [`super::corridor::resample`]) instead of the start-goal bearing, and its motion
+    /// lengths reach twice the guide's length over n; UAVs with an empty guide keep the
+    /// start-goal sector. So a corridor that leaves the start-goal bearing by more than
+    /// 45 degrees (round a threat) can be expressed and searched around.
+    #[must_use]
+    pub fn along_guides(frame: Frame, convention: AngleConvention, guides: &[Vec<DVec2>]) -> Self {
         let n = frame.n;
         let mut bounds = Vec::with_capacity(frame.dimension());
-        for s in &frame.starts {
+        for (i, s) in frame.starts.iter().enumerate() {
             let d = frame.goal - *s;
-            let r_max = 2.0 * d.length() / n as f64;
-            let phi0 = d.y.atan2(d.x);
+            let guide = guides.get(i).filter(|g| g.len() >= 2);
+            let (r_max, phis): (f64, Vec<f64>) = match guide {
+                None => (2.0 * d.length() / n as f64, vec![d.y.atan2(d.x); n]),
+                Some(g) => {
+                    let length: f64 = g.windows(2).map(|w| w[0].distance(w[1])).sum();
+                    let mut points = vec![s.truncate()];
+                    points.extend(super::corridor::resample(g, n));
+                    let bearing = |a: DVec2, b: DVec2| match convention {
+                        AngleConvention::Consistent => (b.y - a.y).atan2(b.x - a.x),
+                        AngleConvention::Spso => (b.x - a.x).atan2(b.y - a.y),
+                    };
+                    let phis = points.windows(2).map(|w| bearing(w[0], w[1])).collect();
+                    (
+                        (2.0 * length / n as f64).max(2.0 * d.length() / n as f64),
+                        phis,
+                    )
+                }
+            };
             bounds.extend(std::iter::repeat_n(Bound::new(0.0, r_max), n));
             bounds.extend(std::iter::repeat_n(Bound::new(-FRAC_PI_4, FRAC_PI_4), n));
-            bounds.extend(std::iter::repeat_n(
-                Bound::new(phi0 - FRAC_PI_4, phi0 + FRAC_PI_4),
-                n,
-            ));
+            bounds.extend(
+                phis.iter()
+                    .map(|&phi0| Bound::new(phi0 - FRAC_PI_4, phi0 + FRAC_PI_4)),
+            );
         }
         Self {
             frame,

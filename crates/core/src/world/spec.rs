@@ -367,6 +367,11 @@ pub struct TimingSpec {
     pub separation: f64,
     /// Radius of the take-off and landing zones where separation is not required, m (30).
     pub zone_radius: f64,
+    /// Range [lo, hi] of the fleet's pace, a factor on the policy's preferred speed
+    /// ([`crate::timing`]) that the planner chooses as a decision variable when lo < hi
+    /// (one more variable per UAV block; the fleet flies at their mean). [1, 1] (the
+    /// default): no choice, the paper's layout.
+    pub pace: [f64; 2],
 }
 
 impl Default for TimingSpec {
@@ -375,7 +380,16 @@ impl Default for TimingSpec {
             policy: TimingPolicy::CommonArrival,
             separation: 10.0,
             zone_radius: 30.0,
+            pace: [1.0, 1.0],
         }
+    }
+}
+
+impl TimingSpec {
+    /// Whether the pace is a decision variable (`pace[0] < pace[1]`).
+    #[must_use]
+    pub fn pace_is_free(&self) -> bool {
+        self.pace[0] < self.pace[1]
     }
 }
 

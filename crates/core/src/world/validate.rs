@@ -277,6 +277,13 @@ impl ScenarioSpec {
         let t = &self.timing;
         non_negative("timing.separation", t.separation)?;
         non_negative("timing.zone_radius", t.zone_radius)?;
+        if !(t.pace.iter().all(|p| p.is_finite() && *p > 0.0) && t.pace[0] <= t.pace[1]) {
+            return Err(err(
+                "timing.pace",
+                "[lo, hi] with 0 < lo <= hi (a factor on the preferred speed; [1, 1] fixes it)",
+                format!("{:?}", t.pace),
+            ));
+        }
         if self.planning.waypoints == 0 || self.planning.waypoints > 1000 {
             return Err(err(
                 "planning.waypoints",
