@@ -108,6 +108,14 @@ fn scenarios_no_plan_can_satisfy_are_said_at_load_time() {
             "payload-above-max.toml",
             "uavs[0].payload_kg: 5 kg is above",
         ),
+        (
+            "start-walled-in.toml",
+            "uavs[0].start: (60, 100) is walled off from the goal by the hard zones (radius + UAV size 1) of threats [0, 1, 2, 3, 4, 5]",
+        ),
+        (
+            "start-walled-in.toml",
+            "uavs[1].start: (30, 30) is walled off",
+        ),
     ] {
         let dir = tempfile::tempdir().unwrap();
         let path = reproducer(file);
