@@ -23,21 +23,28 @@ use swarmplan_core::world::spec::TimingPolicy;
 use swarmplan_core::world::World;
 use swarmplan_io::scenario::{build_world, load_spec};
 
-/// paper-case2 (common arrival), gen-s2-u8-t12-shared with cruise timing, gen-s1-u10-t12.
+/// paper-case2 (common arrival), gen-s2-u8-t12-shared with cruise timing, gen-s1-u10-t12,
+/// and paper-case2 and the cruise one again with the fleet's pace free (a change to one
+/// UAV's block can then change everyone's speed).
 fn worlds() -> &'static [World] {
     static W: OnceLock<Vec<World>> = OnceLock::new();
     W.get_or_init(|| {
-        let load = |name: &str, cruise: bool| {
+        let load = |name: &str, cruise: bool, free_pace: bool| {
             let mut loaded = load_spec(name).unwrap();
             if cruise {
                 loaded.spec.timing.policy = TimingPolicy::Cruise;
             }
+            if free_pace {
+                loaded.spec.timing.pace = [0.5, 1.5];
+            }
             build_world(&loaded, None).unwrap()
         };
         vec![
-            load("paper-case2", false),
-            load("gen-s2-u8-t12-shared", true),
-            load("gen-s1-u10-t12", false),
+            load("paper-case2", false, false),
+            load("gen-s2-u8-t12-shared", true, false),
+            load("gen-s1-u10-t12", false, false),
+            load("paper-case2", false, true),
+            load("gen-s2-u8-t12-shared", true, true),
         ]
     })
 }
@@ -59,11 +66,11 @@ fn outcome(problem: &PlanningProblem<'_>, x: &[f64], scratch: &mut Scratch) -> O
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(24))]
+    #![proptest_config(ProptestConfig::with_cases(32))]
 
     #[test]
     fn an_evaluation_after_changes_equals_one_on_fresh_buffers(
-        world_index in 0usize..3,
+        world_index in 0usize..5,
         seed in any::<u64>(),
         changes in prop::collection::vec((0usize..64, 1usize..3, prop::bool::ANY), 1..8),
     ) {
@@ -122,4 +129,24 @@ fn a_change_to_one_uav_reuses_the_other_pairs() {
         9,
         "UAV 1 changed: only its 9 pairs are swept again"
     );
+}
+
+/// Under common arrival a change of pace only rescales time, which the pair results follow
+/// exactly: no pair is swept again, and the result is that of fresh buffers.
+#[test]
+fn a_change_of_pace_alone_sweeps_no_pair_again() {
+    let world = &worlds()[3];
+    let problem = PlanningProblem::new(world, EncodingKind::Spherical, InitKind::Line);
+    let mut rng = rng_from_seed(8);
+    let mut x = vec![0.0; problem.dimension()];
+    problem.sample_initial(&mut rng, &mut x);
+    let mut warm = Scratch::default();
+    let before = outcome(&problem, &x, &mut warm);
+    assert_eq!(warm.pairs_swept(), 10);
+    let k = problem.block_size() - 1; // UAV 0's pace value
+    x[k] = problem.bounds()[k].project(x[k] + 0.2);
+    let after = outcome(&problem, &x, &mut warm);
+    assert_eq!(warm.pairs_swept(), 0);
+    assert_ne!(before.0, after.0, "the pace changed the cost");
+    assert_eq!(after, outcome(&problem, &x, &mut Scratch::default()));
 }
