@@ -105,17 +105,26 @@ proptest! {
     }
 }
 
+/// A problem on world `index`, a vector drawn from its initialisation with `seed`, and
+/// buffers warmed by one evaluation of it (with its outcome).
+fn evaluated_once(
+    index: usize,
+    seed: u64,
+) -> (PlanningProblem<'static>, Vec<f64>, Scratch, Outcome) {
+    let problem = PlanningProblem::new(&worlds()[index], EncodingKind::Spherical, InitKind::Line);
+    let mut rng = rng_from_seed(seed);
+    let mut x = vec![0.0; problem.dimension()];
+    problem.sample_initial(&mut rng, &mut x);
+    let mut warm = Scratch::default();
+    let first = outcome(&problem, &x, &mut warm);
+    (problem, x, warm, first)
+}
+
 /// The property above would hold trivially if nothing was ever reused: on a plan changed in
 /// one UAV of ten, the warm buffers must sweep fewer pairs than fresh ones.
 #[test]
 fn a_change_to_one_uav_reuses_the_other_pairs() {
-    let world = &worlds()[2];
-    let problem = PlanningProblem::new(world, EncodingKind::Spherical, InitKind::Line);
-    let mut rng = rng_from_seed(7);
-    let mut x = vec![0.0; problem.dimension()];
-    problem.sample_initial(&mut rng, &mut x);
-    let mut warm = Scratch::default();
-    let _ = outcome(&problem, &x, &mut warm);
+    let (problem, mut x, mut warm, _) = evaluated_once(2, 7);
     assert_eq!(
         warm.pairs_swept(),
         45,
@@ -135,13 +144,7 @@ fn a_change_to_one_uav_reuses_the_other_pairs() {
 /// exactly: no pair is swept again, and the result is that of fresh buffers.
 #[test]
 fn a_change_of_pace_alone_sweeps_no_pair_again() {
-    let world = &worlds()[3];
-    let problem = PlanningProblem::new(world, EncodingKind::Spherical, InitKind::Line);
-    let mut rng = rng_from_seed(8);
-    let mut x = vec![0.0; problem.dimension()];
-    problem.sample_initial(&mut rng, &mut x);
-    let mut warm = Scratch::default();
-    let before = outcome(&problem, &x, &mut warm);
+    let (problem, mut x, mut warm, before) = evaluated_once(3, 8);
     assert_eq!(warm.pairs_swept(), 10);
     let k = problem.block_size() - 1; // UAV 0's pace value
     x[k] = problem.bounds()[k].project(x[k] + 0.2);

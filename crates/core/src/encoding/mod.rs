@@ -169,6 +169,12 @@ mod tests {
     use crate::rng::rng_from_seed;
 
     fn frame() -> Frame {
+        frame_with(6)
+    }
+
+    /// Two UAVs from near (100, 80) to (800, 700) on a 1000 x 900 m map, `n` free waypoints
+    /// (also the encoding wrappers' tests).
+    pub(super) fn frame_with(n: usize) -> Frame {
         Frame {
             starts: vec![
                 DVec3::new(100.0, 80.0, 150.0),
@@ -178,7 +184,7 @@ mod tests {
             x: [0.0, 1000.0],
             y: [0.0, 900.0],
             z: [100.0, 200.0],
-            n: 6,
+            n,
         }
     }
 

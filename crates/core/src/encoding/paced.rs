@@ -92,21 +92,11 @@ impl PathEncoding for Paced {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::encoding::{cartesian::Cartesian, Frame};
-    use glam::DVec3;
+    use crate::encoding::cartesian::Cartesian;
+    use crate::encoding::tests::frame_with;
 
-    fn frame() -> Frame {
-        Frame {
-            starts: vec![
-                DVec3::new(100.0, 80.0, 150.0),
-                DVec3::new(120.0, 60.0, 150.0),
-            ],
-            goal: DVec3::new(800.0, 700.0, 150.0),
-            x: [0.0, 1000.0],
-            y: [0.0, 900.0],
-            z: [100.0, 200.0],
-            n: 3,
-        }
+    fn frame() -> crate::encoding::Frame {
+        frame_with(3)
     }
 
     #[test]

@@ -210,30 +210,27 @@ mod tests {
         Threat { x, y, z: 150.0, r }
     }
 
-    #[test]
-    fn a_ring_of_threats_walls_the_start_in() {
-        // Eight threats of radius 60 on a circle of radius 150 around the start: neighbours
-        // are 115 m apart, so their hard zones (60 + 1) overlap and close the ring.
-        let ring = (0..8)
+    /// The first `count` of eight threats of radius 60 on a circle of radius 150 around
+    /// (300, 300): neighbours are 115 m apart, so their hard zones (60 + 1) overlap.
+    fn ring(count: usize) -> Vec<Threat> {
+        (0..count)
             .map(|k| {
                 let a = k as f64 * std::f64::consts::FRAC_PI_4;
                 threat(300.0 + 150.0 * a.cos(), 300.0 + 150.0 * a.sin(), 60.0)
             })
-            .collect();
-        let walls = walling_threats(&spec(ring), [300.0, 300.0], 1.0);
+            .collect()
+    }
+
+    #[test]
+    fn a_ring_of_threats_walls_the_start_in() {
+        let walls = walling_threats(&spec(ring(8)), [300.0, 300.0], 1.0);
         assert_eq!(walls, Some((0..8).collect()));
     }
 
     #[test]
     fn a_ring_with_a_gap_wider_than_the_uav_is_open() {
         // Seven of the eight: the missing one leaves a gap of about 115 m.
-        let ring = (0..7)
-            .map(|k| {
-                let a = k as f64 * std::f64::consts::FRAC_PI_4;
-                threat(300.0 + 150.0 * a.cos(), 300.0 + 150.0 * a.sin(), 60.0)
-            })
-            .collect();
-        assert_eq!(walling_threats(&spec(ring), [300.0, 300.0], 1.0), None);
+        assert_eq!(walling_threats(&spec(ring(7)), [300.0, 300.0], 1.0), None);
     }
 
     #[test]
@@ -275,13 +272,7 @@ mod tests {
 
     #[test]
     fn only_the_walled_in_starts_are_listed_and_the_warning_names_them() {
-        let ring: Vec<Threat> = (0..8)
-            .map(|k| {
-                let a = k as f64 * std::f64::consts::FRAC_PI_4;
-                threat(300.0 + 150.0 * a.cos(), 300.0 + 150.0 * a.sin(), 60.0)
-            })
-            .collect();
-        let mut s = spec(ring);
+        let mut s = spec(ring(8));
         let inside = UavSpec {
             start: [300.0, 320.0, 150.0],
             ..UavSpec::default()
