@@ -47,6 +47,7 @@ fn generated(uavs: usize) -> impl Iterator<Item = String> {
             shared_start: false,
             comm_windows: GENERATED_WINDOWS,
             terrain: None,
+            free_pace: false,
         }
         .name()
     })

@@ -38,10 +38,13 @@ pub struct GenerateRequest {
     pub comm_windows: usize,
     /// A DEM whose extent becomes the map (default: procedural terrain from the seed).
     pub terrain: Option<String>,
+    /// The fleet's pace free within the speed limits (`timing.pace` = [v_min, v_max] /
+    /// cruise, a decision variable; docs/model.md, "Pace"); otherwise fixed at 1.
+    pub free_pace: bool,
 }
 
 impl GenerateRequest {
-    /// The scenario's name, `gen-sK-uN-tM[-wW][-shared]`, from which [`Self::from_name`]
+    /// The scenario's name, `gen-sK-uN-tM[-wW][-shared][-pace]`, from which [`Self::from_name`]
     /// gets the request back: a generated scenario can be named wherever a built-in one can
     /// (`plan --scenario gen-s3-u8-t12-w1`, `bench --scenarios`, suites), and a record's
     /// scenario name is enough to rebuild it. Only procedural-terrain requests have names
@@ -54,6 +57,9 @@ impl GenerateRequest {
         }
         if self.shared_start {
             name.push_str("-shared");
+        }
+        if self.free_pace {
+            name.push_str("-pace");
         }
         name
     }
@@ -81,9 +87,11 @@ impl GenerateRequest {
             shared_start: false,
             comm_windows: 0,
             terrain: None,
+            free_pace: false,
         };
         for p in parts {
             match p {
+                "pace" if !req.free_pace => req.free_pace = true,
                 "shared" if !req.shared_start => req.shared_start = true,
                 w if w.starts_with('w') && req.comm_windows == 0 && !req.shared_start => {
                     let digits = &w[1..];
@@ -121,6 +129,15 @@ pub enum GenerateError {
     Dem(#[from] DemError),
     #[error(transparent)]
     Template(#[from] ScenarioError),
+}
+
+/// Frees the fleet's pace within the first UAV's speed limits: `timing.pace` = [v_min,
+/// v_max] / cruise (a factor outside it only clamps against the limits). Unchanged when the
+/// cruise speed is not positive.
+pub(crate) fn free_pace(spec: &mut ScenarioSpec) {
+    if let Some(u) = spec.uavs.first().filter(|u| u.cruise_speed > 0.0) {
+        spec.timing.pace = [u.speed[0] / u.cruise_speed, u.speed[1] / u.cruise_speed];
+    }
 }
 
 /// Raises every UAV's battery to room for detours of 80 % over the straight start-goal
@@ -268,6 +285,9 @@ pub fn generate(req: &GenerateRequest) -> Result<ScenarioSpec, GenerateError> {
         })
         .collect();
     size_batteries(&mut spec, length);
+    if req.free_pace {
+        free_pace(&mut spec);
+    }
     spec.planning.seed = 1;
     spec.validate().map_err(|e| {
         GenerateError::Template(ScenarioError::Invalid {
@@ -291,19 +311,22 @@ mod tests {
             shared_start: false,
             comm_windows: 1,
             terrain: None,
+            free_pace: false,
         }
     }
 
     #[test]
     fn names_give_the_request_back() {
-        for (seed, uavs, threats, windows, shared) in [
-            (3, 8, 12, 1, false),
-            (1, 20, 0, 0, true),
-            (17, 5, 30, 2, true),
+        for (seed, uavs, threats, windows, shared, free_pace) in [
+            (3, 8, 12, 1, false, false),
+            (1, 20, 0, 0, true, false),
+            (17, 5, 30, 2, true, true),
+            (4, 12, 10, 0, false, true),
         ] {
             let req = GenerateRequest {
                 comm_windows: windows,
                 shared_start: shared,
+                free_pace,
                 ..request(seed, uavs, threats)
             };
             let name = req.name();
@@ -312,7 +335,13 @@ mod tests {
                 Some(req.clone()),
                 "{name}"
             );
-            assert_eq!(generate(&req).unwrap().name, name);
+            let spec = generate(&req).unwrap();
+            assert_eq!(spec.name, name);
+            assert_eq!(spec.timing.pace_is_free(), free_pace, "{name}");
+            if free_pace {
+                let u = &spec.uavs[0];
+                assert_eq!(spec.timing.pace[1], u.speed[1] / u.cruise_speed);
+            }
         }
         for bad in [
             "gen-s1-u8",
@@ -321,6 +350,8 @@ mod tests {
             "gen-s01-u8-t12",
             "gen-s1-u8-t12-w0",
             "gen-s1-u8-t12-shared-w1",
+            "gen-s1-u8-t12-pace-shared",
+            "gen-s1-u8-t12-pace-pace",
             "gen-s-1-u8-t12",
             "paper-case1",
         ] {

@@ -28,7 +28,7 @@ use swarmplan_core::world::terrain::Sampling;
 use swarmplan_core::world::threat::Threat;
 use thiserror::Error;
 
-use crate::generate::size_batteries;
+use crate::generate::{free_pace, size_batteries};
 use crate::reference_data::shared_dir;
 use crate::scenario::{load_spec, ScenarioError};
 
@@ -157,12 +157,7 @@ pub fn from_instance(path: &Path, uavs: usize, name: &str) -> Result<ScenarioSpe
         uavs
     ];
     spec.goal.position = inst.goal;
-    if template.cruise_speed > 0.0 {
-        spec.timing.pace = [
-            template.speed[0] / template.cruise_speed,
-            template.speed[1] / template.cruise_speed,
-        ];
-    }
+    free_pace(&mut spec);
     spec.communication.interference.clear();
     let length = (inst.goal[0] - inst.start[0]).hypot(inst.goal[1] - inst.start[1]);
     size_batteries(&mut spec, length);

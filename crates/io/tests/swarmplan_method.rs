@@ -28,6 +28,7 @@ fn generated() -> World {
         shared_start: false,
         comm_windows: 0,
         terrain: None,
+        free_pace: false,
     })
     .unwrap();
     let loaded = LoadedSpec {

@@ -25,6 +25,10 @@ pub struct ScenarioGenerateArgs {
     /// Interference windows on the way (0: none).
     #[arg(long, default_value_t = 0)]
     pub comm_windows: usize,
+    /// Let the planner choose the fleet's pace within the speed limits (timing.pace; a
+    /// decision variable, docs/model.md "Pace"); default: fixed nearest cruise.
+    #[arg(long)]
+    pub free_pace: bool,
     /// DEM (GeoTIFF or ESRI ASCII) whose extent becomes the map (default: procedural).
     #[arg(long)]
     pub terrain: Option<PathBuf>,
@@ -41,9 +45,10 @@ pub fn run(args: &ScenarioGenerateArgs) -> Result<()> {
         shared_start: args.shared_start,
         comm_windows: args.comm_windows,
         terrain: args.terrain.as_ref().map(|p| p.display().to_string()),
+        free_pace: args.free_pace,
     })?;
     let text = format!(
-        "# swarmplan scenario generate --seed {} --uavs {} --threats {}{}{}{}\n{}",
+        "# swarmplan scenario generate --seed {} --uavs {} --threats {}{}{}{}{}\n{}",
         args.seed,
         args.uavs,
         args.threats,
@@ -57,6 +62,7 @@ pub fn run(args: &ScenarioGenerateArgs) -> Result<()> {
         } else {
             String::new()
         },
+        if args.free_pace { " --free-pace" } else { "" },
         args.terrain
             .as_ref()
             .map_or(String::new(), |t| format!(" --terrain {}", t.display())),
