@@ -151,13 +151,23 @@ impl TimedPath {
 }
 
 /// Every UAV's timed path and the mission horizon.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct TimedPlan {
     pub paths: Vec<TimedPath>,
     /// The plan's pace ([`Plan::pace`]).
     pub pace: f64,
     /// Latest arrival (s).
     pub horizon: f64,
+}
+
+impl Default for TimedPlan {
+    fn default() -> Self {
+        Self {
+            paths: Vec::new(),
+            pace: 1.0,
+            horizon: 0.0,
+        }
+    }
 }
 
 impl TimedPlan {

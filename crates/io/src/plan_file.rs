@@ -185,6 +185,15 @@ pub fn parse_plan(
             ),
         ));
     }
+    let [lo, hi] = world.spec.timing.pace;
+    if provenance == Provenance::MustMatch && !(lo..=hi).contains(&file.pace) {
+        return Err(PlanFileError::Provenance {
+            path: origin.to_string(),
+            what: "pace",
+            recorded: format!("a pace of {}", file.pace),
+            current: format!("scenario `{}`'s timing.pace [{lo}, {hi}]", world.spec.name),
+        });
+    }
     let mut plan = Plan {
         pace: file.pace,
         ..Plan::default()

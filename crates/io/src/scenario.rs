@@ -258,6 +258,20 @@ mod tests {
         let e = parse_spec(&text, "x.toml").unwrap_err().to_string();
         assert!(e.contains("uavs[0].battery_wh"), "{e}");
         assert!(e.contains("-2"), "{e}");
+        // A pace range must be open (the planner's choice) or exactly [1, 1]: a fixed pace
+        // other than 1 would otherwise be silently flown at 1.
+        for bad in ["[1.3, 1.3]", "[1.5, 0.5]", "[0.0, 1.0]"] {
+            let text = format!("{}\n[timing]\npace = {bad}\n", BUILTIN[4].1);
+            let e = parse_spec(&text, "x.toml").unwrap_err().to_string();
+            assert!(
+                e.contains("timing.pace") && e.contains("[1, 1]"),
+                "{bad}: {e}"
+            );
+        }
+        for good in ["[1.0, 1.0]", "[0.5, 1.5]"] {
+            let text = format!("{}\n[timing]\npace = {good}\n", BUILTIN[4].1);
+            assert!(parse_spec(&text, "x.toml").is_ok(), "{good}");
+        }
     }
 
     #[test]

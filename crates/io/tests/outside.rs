@@ -108,6 +108,21 @@ fn outside_instances_leave_the_pace_free_and_plan_files_keep_it() {
     ))
     .unwrap()
     .contains("pace"));
+    // A pace the scenario does not allow is refused unless asked otherwise.
+    let fast = text.replace("\"pace\":1.4", "\"pace\":1.9");
+    let e = parse_plan(&fast, "p.json", &world, Provenance::MustMatch)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("pace") && e.contains("1.9") && e.contains("timing.pace"),
+        "{e}"
+    );
+    assert_eq!(
+        parse_plan(&fast, "p.json", &world, Provenance::AllowOther)
+            .unwrap()
+            .pace,
+        1.9
+    );
     let bad = text.replace("\"pace\":1.4", "\"pace\":-2.0");
     let e = parse_plan(&bad, "p.json", &world, Provenance::MustMatch)
         .unwrap_err()

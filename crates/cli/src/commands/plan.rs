@@ -31,7 +31,8 @@ pub struct PlanArgs {
     /// Replace the method's encoding: spherical, cartesian, angle.
     #[arg(long)]
     pub encoding: Option<EncodingKind>,
-    /// Replace the method's initialisation: uniform, line, corridor (threat-free corridor, docs/method.md).
+    /// Replace the method's initialisation: uniform, line, corridor (a threat-free corridor;
+    /// docs/results.md, "Outside benchmark instances").
     #[arg(long)]
     pub init: Option<InitKind>,
     /// Seed of the run (default: the scenario's `planning.seed`).

@@ -50,9 +50,16 @@ impl Paced {
         }
     }
 
-    /// The fleet's pace of decision vector `x`: the mean of its pace values.
+    /// The fleet's pace of decision vector `x`: the mean of its pace values, exactly the
+    /// value when they are all equal (as [`PathEncoding::encode_into`] writes them; a sum
+    /// over n and back is not always the same bits).
     #[must_use]
     pub fn pace_of(&self, x: &[f64]) -> f64 {
+        let mut values = x.chunks(self.block + 1).map(|b| b[self.block]);
+        let first = values.clone().next().unwrap_or(1.0);
+        if values.all(|v| v.to_bits() == first.to_bits()) {
+            return first;
+        }
         let sum: f64 = x.chunks(self.block + 1).map(|b| b[self.block]).sum();
         sum / self.uavs.max(1) as f64
     }
@@ -124,6 +131,15 @@ mod tests {
         paced.encode_into(&plan, &mut y);
         assert_eq!((y[9], y[19]), (1.25, 1.25));
         assert_eq!(paced.decode(&y), plan);
+        // Equal values give back exactly that pace (0.1 x 3 / 3 would not).
+        let tenth = Plan {
+            pace: 0.1,
+            ..plan.clone()
+        };
+        let wide = Paced::new(Box::new(Cartesian::new(frame())), 2, [0.05, 1.6]);
+        let mut z = vec![0.0; x.len()];
+        wide.encode_into(&tenth, &mut z);
+        assert_eq!(wide.decode(&z).pace.to_bits(), 0.1f64.to_bits());
         // A pace outside the range is clamped into it.
         let fast = Plan { pace: 3.0, ..plan };
         paced.encode_into(&fast, &mut y);

@@ -13,7 +13,9 @@
 //! inside). A feasible path passes only through cells that are not blocked, and two cells it
 //! visits in a row share at least a corner, so if no 8-connected chain of open cells joins the
 //! start's cell to the goal's, no feasible path exists. The converse does not hold (a gap
-//! narrower than a cell can look open), so the test never claims a reachable goal is walled off.
+//! narrower than a cell can look open), so the test never claims a goal reachable inside the
+//! map box is walled off (a hand-made plan may leave the box, a bounds violation, which the
+//! `paper` profile only costs; planners' waypoints stay in it).
 
 use std::collections::BTreeSet;
 

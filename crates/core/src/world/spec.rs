@@ -370,7 +370,8 @@ pub struct TimingSpec {
     /// Range [lo, hi] of the fleet's pace, a factor on the policy's preferred speed
     /// ([`crate::timing`]) that the planner chooses as a decision variable when lo < hi
     /// (one more variable per UAV block; the fleet flies at their mean). [1, 1] (the
-    /// default): no choice, the paper's layout.
+    /// default): no choice, the paper's layout (and not written out).
+    #[serde(skip_serializing_if = "is_fixed_unit_pace")]
     pub pace: [f64; 2],
 }
 
@@ -383,6 +384,11 @@ impl Default for TimingSpec {
             pace: [1.0, 1.0],
         }
     }
+}
+
+#[allow(clippy::trivially_copy_pass_by_ref, clippy::float_cmp)]
+fn is_fixed_unit_pace(p: &[f64; 2]) -> bool {
+    *p == [1.0, 1.0]
 }
 
 impl TimingSpec {

@@ -59,11 +59,19 @@ pub fn unreachable_feasibility(spec: &ScenarioSpec) -> Vec<Unreachable> {
             });
         }
         let cruise = spec.timing.policy == super::spec::TimingPolicy::Cruise;
-        if cruise && !(u.speed[0]..=u.speed[1]).contains(&u.cruise_speed) {
+        // The `cruise` policy flies pace x cruise, the pace within timing.pace.
+        let [lo, hi] = spec.timing.pace;
+        let reachable = u.cruise_speed * hi >= u.speed[0] && u.cruise_speed * lo <= u.speed[1];
+        if cruise && !reachable {
+            let paced = if spec.timing.pace_is_free() {
+                format!(" times a pace in timing.pace [{lo}, {hi}]")
+            } else {
+                String::new()
+            };
             out.push(Unreachable {
                 field: format!("uavs[{k}].cruise_speed"),
                 reason: format!(
-                    "{} m/s is outside uavs[{k}].speed [{}, {}] m/s and the `cruise` timing policy flies every segment at it",
+                    "{} m/s{paced} is outside uavs[{k}].speed [{}, {}] m/s and the `cruise` timing policy flies every segment at it",
                     u.cruise_speed, u.speed[0], u.speed[1]
                 ),
             });
@@ -126,7 +134,7 @@ fn walled_in(spec: &ScenarioSpec, out: &mut Vec<Unreachable>) {
         out.push(Unreachable {
             field: format!("uavs[{k}].start"),
             reason: format!(
-                "({}, {}) is walled off from the goal by the hard zones (radius + UAV size {}) of threats {}: every way out of the region around it crosses one{also}",
+                "({}, {}) is walled off from the goal by the hard zones (radius + UAV size {}) of threats {}: every way out of the region around it inside the map box crosses one{also}",
                 start[0],
                 start[1],
                 spec.uavs[k].size,

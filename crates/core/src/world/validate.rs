@@ -277,10 +277,11 @@ impl ScenarioSpec {
         let t = &self.timing;
         non_negative("timing.separation", t.separation)?;
         non_negative("timing.zone_radius", t.zone_radius)?;
-        if !(t.pace.iter().all(|p| p.is_finite() && *p > 0.0) && t.pace[0] <= t.pace[1]) {
+        let positive = t.pace.iter().all(|p| p.is_finite() && *p > 0.0);
+        if !(positive && (t.pace[0] < t.pace[1] || t.pace == [1.0, 1.0])) {
             return Err(err(
                 "timing.pace",
-                "[lo, hi] with 0 < lo <= hi (a factor on the preferred speed; [1, 1] fixes it)",
+                "[lo, hi] with 0 < lo < hi (the planner's range for a factor on the preferred speed), or [1, 1] for no choice",
                 format!("{:?}", t.pace),
             ));
         }
