@@ -55,13 +55,12 @@ impl Paced {
     /// over n and back is not always the same bits).
     #[must_use]
     pub fn pace_of(&self, x: &[f64]) -> f64 {
-        let mut values = x.chunks(self.block + 1).map(|b| b[self.block]);
-        let first = values.clone().next().unwrap_or(1.0);
-        if values.all(|v| v.to_bits() == first.to_bits()) {
+        let values = || x.chunks(self.block + 1).map(|b| b[self.block]);
+        let first = values().next().unwrap_or(1.0);
+        if values().all(|v| v.to_bits() == first.to_bits()) {
             return first;
         }
-        let sum: f64 = x.chunks(self.block + 1).map(|b| b[self.block]).sum();
-        sum / self.uavs.max(1) as f64
+        values().sum::<f64>() / self.uavs.max(1) as f64
     }
 }
 
@@ -131,13 +130,17 @@ mod tests {
         paced.encode_into(&plan, &mut y);
         assert_eq!((y[9], y[19]), (1.25, 1.25));
         assert_eq!(paced.decode(&y), plan);
-        // Equal values give back exactly that pace (0.1 x 3 / 3 would not).
+        // Equal values give back exactly that pace: with three UAVs, (0.1 + 0.1 + 0.1) / 3
+        // is 0.10000000000000002, not 0.1.
+        assert_ne!((0.1f64 + 0.1 + 0.1) / 3.0, 0.1);
+        let mut three = frame();
+        three.starts.push(glam::DVec3::new(140.0, 40.0, 150.0));
+        let wide = Paced::new(Box::new(Cartesian::new(three.clone())), 3, [0.05, 1.6]);
         let tenth = Plan {
             pace: 0.1,
-            ..plan.clone()
+            ..Cartesian::new(three).decode(&vec![500.0; 27])
         };
-        let wide = Paced::new(Box::new(Cartesian::new(frame())), 2, [0.05, 1.6]);
-        let mut z = vec![0.0; x.len()];
+        let mut z = vec![0.0; wide.bounds().len()];
         wide.encode_into(&tenth, &mut z);
         assert_eq!(wide.decode(&z).pace.to_bits(), 0.1f64.to_bits());
         // A pace outside the range is clamped into it.
