@@ -30,12 +30,16 @@ impl Default for Plan {
     }
 }
 
-fn unit_pace() -> f64 {
+/// Pace 1, the serde default of every `pace` field (plans, plan files).
+#[must_use]
+pub fn unit_pace() -> f64 {
     1.0
 }
 
+/// Whether `p` is pace 1 (such a `pace` field is not written).
 #[allow(clippy::trivially_copy_pass_by_ref, clippy::float_cmp)]
-fn is_unit_pace(p: &f64) -> bool {
+#[must_use]
+pub fn is_unit_pace(p: &f64) -> bool {
     *p == 1.0
 }
 

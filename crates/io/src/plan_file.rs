@@ -72,18 +72,12 @@ pub struct PlanFile {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub terrain_fingerprint: Option<String>,
     /// The fleet's pace ([`Plan::pace`]; absent: 1, nearest cruise).
-    #[serde(default = "unit_pace", skip_serializing_if = "is_unit_pace")]
+    #[serde(
+        default = "swarmplan_core::plan::unit_pace",
+        skip_serializing_if = "swarmplan_core::plan::is_unit_pace"
+    )]
     pub pace: f64,
     pub uavs: Vec<UavEntry>,
-}
-
-fn unit_pace() -> f64 {
-    1.0
-}
-
-#[allow(clippy::trivially_copy_pass_by_ref, clippy::float_cmp)]
-fn is_unit_pace(p: &f64) -> bool {
-    *p == 1.0
 }
 
 /// Whether a plan's recorded scenario and terrain must match the world it is read into.
