@@ -8,6 +8,11 @@
 //! terrain under the imported position. The first and last waypoints of each path are
 //! snapped onto the scenario's start and goal when within 1 cm, so that the round trip's
 //! last-bit differences do not fail the plan checks of `evaluate`.
+//!
+//! The fleet's pace comes from the `pace` column (CSV, the same on every row) or property
+//! (GeoJSON, the same on every path); files without it are at pace 1, as exports were
+//! before the pace existed. A pace the scenario's `timing.pace` does not allow is refused:
+//! the times in the file would not be the times the plan is evaluated at.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -114,7 +119,8 @@ pub fn parse_csv(
         need("lon_deg")?,
         need("alt_amsl_m")?,
     );
-    let (cwp, cagl) = (col("waypoint"), col("alt_agl_m"));
+    let (cwp, cagl, cpace) = (col("waypoint"), col("alt_agl_m"), col("pace"));
+    let mut pace: Option<(f64, usize)> = None;
     let mut rows: BTreeMap<usize, Vec<(usize, Fix)>> = BTreeMap::new();
     for (line, l) in lines {
         let f: Vec<&str> = l.split(',').map(str::trim).collect();
@@ -146,6 +152,21 @@ pub fn parse_csv(
                 )
             })
         };
+        if let Some(c) = cpace {
+            let p = number(c)?;
+            match pace {
+                None => pace = Some((p, line)),
+                Some((first, at)) if first.to_bits() != p.to_bits() => {
+                    return Err(line_err(
+                        line,
+                        format!(
+                            "pace: expected the fleet's one pace, {first} (line {at}), got {p}"
+                        ),
+                    ));
+                }
+                Some(_) => {}
+            }
+        }
         let uav = index(cu)?;
         let entry = rows.entry(uav).or_default();
         let k = match cwp {
@@ -177,7 +198,7 @@ pub fn parse_csv(
         }
         paths.push(pts.into_iter().map(|(_, f)| f).collect::<Vec<_>>());
     }
-    to_plan(paths, name, world, frame)
+    to_plan(paths, pace.map(|(p, _)| p), name, world, frame)
 }
 
 /// Parses a mission GeoJSON: the `path` features (LineStrings of [lon, lat, alt AMSL] with
@@ -203,6 +224,7 @@ pub fn parse_geojson(
         .as_array()
         .ok_or_else(|| invalid("`features` is not an array".into()))?;
     let mut by_uav: BTreeMap<usize, Vec<Fix>> = BTreeMap::new();
+    let mut pace: Option<(f64, usize)> = None;
     for (k, f) in features.iter().enumerate() {
         let props = &f["properties"];
         let is_path = props["kind"] == "path"
@@ -218,6 +240,23 @@ pub fn parse_geojson(
             .as_u64()
             .and_then(|u| usize::try_from(u).ok())
             .ok_or_else(|| invalid(format!("{here}.properties.uav: expected a UAV index")))?;
+        if !props["pace"].is_null() {
+            let p = props["pace"].as_f64().ok_or_else(|| {
+                invalid(format!(
+                    "{here}.properties.pace: expected a number, got {}",
+                    props["pace"]
+                ))
+            })?;
+            match pace {
+                None => pace = Some((p, k)),
+                Some((first, at)) if first.to_bits() != p.to_bits() => {
+                    return Err(invalid(format!(
+                        "{here}.properties.pace: expected the fleet's one pace, {first} (features[{at}]), got {p}"
+                    )));
+                }
+                Some(_) => {}
+            }
+        }
         let coords = f["geometry"]["coordinates"]
             .as_array()
             .ok_or_else(|| invalid(format!("{here}: coordinates are not an array")))?;
@@ -265,12 +304,13 @@ pub fn parse_geojson(
         }
         paths.push(fixes);
     }
-    to_plan(paths, name, world, frame)
+    to_plan(paths, pace.map(|(p, _)| p), name, world, frame)
 }
 
 /// Converts imported fixes to a plan and checks it against the world.
 fn to_plan(
     paths: Vec<Vec<Fix>>,
+    pace: Option<f64>,
     name: &str,
     world: &World,
     frame: &LocalFrame,
@@ -287,7 +327,18 @@ fn to_plan(
             paths.len()
         )));
     }
-    let mut plan = Plan::default();
+    let pace = pace.unwrap_or(1.0);
+    let [lo, hi] = world.spec.timing.pace;
+    if !(pace.is_finite() && pace > 0.0 && (lo..=hi).contains(&pace)) {
+        return Err(invalid(format!(
+            "pace {pace}: scenario `{}` allows timing.pace [{lo}, {hi}]",
+            world.spec.name
+        )));
+    }
+    let mut plan = Plan {
+        pace,
+        ..Plan::default()
+    };
     for (i, fixes) in paths.into_iter().enumerate() {
         if fixes.len() < 2 {
             return Err(invalid(format!(

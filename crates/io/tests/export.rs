@@ -364,7 +364,9 @@ fn kml_and_csv_state_their_altitude_reference() {
     assert!(comment.starts_with("# ") && comment.contains("above mean sea level"));
     assert_eq!(
         lines.next(),
-        Some("uav,waypoint,time_s,lat_deg,lon_deg,alt_amsl_m,alt_agl_m,speed_mps,acceptance_m")
+        Some(
+            "uav,waypoint,time_s,lat_deg,lon_deg,alt_amsl_m,alt_agl_m,speed_mps,acceptance_m,pace"
+        )
     );
     let rows = lines.count();
     assert_eq!(
@@ -408,6 +410,59 @@ fn export_then_reimport_gives_the_same_cost() {
             assert_eq!(*p.waypoints.last().unwrap(), world.goal);
         }
     }
+}
+
+#[test]
+fn a_paced_plan_is_reimported_at_its_pace_and_a_foreign_pace_is_refused() {
+    // Before the exports recorded the pace, a re-import was timed at pace 1: same waypoints,
+    // other times, other cost.
+    let mut loaded = load_spec("tiny").unwrap();
+    loaded.spec.timing.pace = [0.5, 1.5];
+    let world = build_world(&loaded, None).unwrap();
+    let mut plan = planned(&world);
+    plan.pace = 1.3;
+    let before = assess(&world, &plan, false);
+    let at_unit_pace = assess(
+        &world,
+        &Plan {
+            pace: 1.0,
+            ..plan.clone()
+        },
+        false,
+    );
+    assert!(
+        (at_unit_pace.total - before.total).abs() > 1e-3,
+        "the pace must matter here"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    for format in [ExportFormat::Csv, ExportFormat::GeoJson] {
+        let files = export_plan(&world, &plan, &frame(), format, dir.path()).unwrap();
+        let again = read_exported_plan(&files[0], &world, &frame()).unwrap();
+        assert_eq!(again.pace.to_bits(), plan.pace.to_bits(), "{format}");
+        let after = assess(&world, &again, false);
+        assert!((after.total - before.total).abs() < 1e-6, "{format}");
+        // The unpaced scenario (pace fixed at 1) refuses the file, naming the pace.
+        let e = read_exported_plan(&files[0], &tiny(), &frame())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("pace 1.3") && e.contains("timing.pace [1, 1]"),
+            "{format}: {e}"
+        );
+    }
+    // One fleet, one pace: rows that disagree are refused at the row.
+    let csv_file = dir.path().join("mission.csv");
+    let text = std::fs::read_to_string(&csv_file).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let last = lines.len() - 1;
+    lines[last] = format!("{},1.25", lines[last].rsplit_once(',').unwrap().0);
+    let e = parse_csv(&lines.join("\n"), "m.csv", &world, &frame())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains(&format!("line {}", last + 1)) && e.contains("one pace") && e.contains("1.25"),
+        "{e}"
+    );
 }
 
 #[test]

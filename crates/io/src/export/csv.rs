@@ -1,7 +1,8 @@
 //! Two CSV tables for the fleet, each with a comment line naming the scenario, frame and
 //! altitude reference, then a header. Readers that do not skip `#` lines can drop it.
 //! - `mission.csv`, one row per waypoint (re-importable, [`crate::import`]):
-//!   `uav,waypoint,time_s,lat_deg,lon_deg,alt_amsl_m,alt_agl_m,speed_mps,acceptance_m`;
+//!   `uav,waypoint,time_s,lat_deg,lon_deg,alt_amsl_m,alt_agl_m,speed_mps,acceptance_m,pace`
+//!   (`pace` the fleet's, the same on every row, so that a re-import is timed as planned);
 //! - `trajectory.csv`, the flown path time-stamped, one row per vertex of the densified
 //!   arcs: `uav,index,time_s,lat_deg,lon_deg,alt_amsl_m,alt_agl_m,on_arc`.
 
@@ -9,7 +10,7 @@ use super::{num, Mission};
 
 /// The header row.
 pub(crate) const COLUMNS: &str =
-    "uav,waypoint,time_s,lat_deg,lon_deg,alt_amsl_m,alt_agl_m,speed_mps,acceptance_m";
+    "uav,waypoint,time_s,lat_deg,lon_deg,alt_amsl_m,alt_agl_m,speed_mps,acceptance_m,pace";
 
 /// The header row of the trajectory.
 pub(crate) const TRAJECTORY_COLUMNS: &str =
@@ -21,7 +22,7 @@ pub(crate) fn csv(m: &Mission) -> String {
     for p in &m.paths {
         for (k, pt) in p.points.iter().enumerate() {
             s.push_str(&format!(
-                "{},{k},{},{},{},{},{},{},{}\n",
+                "{},{k},{},{},{},{},{},{},{},{}\n",
                 p.uav,
                 num(pt.time_s),
                 num(pt.geo.lat_deg),
@@ -29,7 +30,8 @@ pub(crate) fn csv(m: &Mission) -> String {
                 num(pt.geo.alt_m),
                 num(pt.alt_agl_m),
                 num(p.speed_mps),
-                num(pt.acceptance_m)
+                num(pt.acceptance_m),
+                num(m.pace)
             ));
         }
     }

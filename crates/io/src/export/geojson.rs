@@ -34,6 +34,7 @@ pub(crate) fn geojson(m: &Mission) -> String {
                 "scenario": m.scenario,
                 "uav": p.uav,
                 "speed_mps": p.speed_mps,
+                "pace": m.pace,
                 "length_m": p.length_m,
                 "arrival_s": p.points[p.points.len() - 1].time_s,
                 "acceptance_m": p.points.iter().map(|pt| pt.acceptance_m).collect::<Vec<_>>(),

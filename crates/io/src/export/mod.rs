@@ -209,6 +209,9 @@ pub struct Mission {
     /// `None` for a feasible plan; else the verdict (`INFEASIBLE: N violations (...)`),
     /// which every format with a description records (QGC, GeoJSON, KML, CSV).
     pub infeasible: Option<String>,
+    /// The plan's pace ([`Plan::pace`]), which the re-importable formats (CSV, GeoJSON)
+    /// record so that a re-imported plan is timed as the original.
+    pub pace: f64,
 }
 
 impl Mission {
@@ -324,6 +327,7 @@ impl Mission {
                 let a = swarmplan_core::cost::assess(world, plan, true);
                 (!a.feasible()).then(|| a.verdict())
             },
+            pace: plan.pace,
         })
     }
 
