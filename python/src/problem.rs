@@ -37,11 +37,18 @@ pub struct Problem {
     bounds: Vec<VarBound>,
     block_size: usize,
     notes: Vec<String>,
+    /// The corridors of the `corridor` initialisation, searched once in `new`.
+    corridors: swarmplan_core::encoding::corridor::Corridors,
 }
 
 impl Problem {
     fn planning(&self) -> PlanningProblem<'_> {
-        PlanningProblem::new(&self.world, self.method.encoding, self.method.init)
+        PlanningProblem::with_corridors(
+            &self.world,
+            self.method.encoding,
+            self.method.init,
+            self.corridors.clone(),
+        )
     }
 
     /// `x` checked (length, finite) and brought into the box as the Rust optimizers bring
@@ -118,7 +125,9 @@ impl Problem {
         let planning = PlanningProblem::new(&loaded.world, method.encoding, method.init);
         let bounds = planning.bounds().to_vec();
         let block_size = planning.block_size();
+        let corridors = planning.corridors().to_vec();
         Ok(Self {
+            corridors,
             world: loaded.world,
             method,
             bounds,

@@ -24,7 +24,7 @@ pub struct PlanningProblem<'w> {
     init: InitKind,
     frame: Frame,
     /// Threat-free corridors per UAV, computed once for the `corridor` initialisation.
-    corridors: Vec<Vec<glam::DVec2>>,
+    corridors: crate::encoding::corridor::Corridors,
 }
 
 thread_local! {
@@ -39,6 +39,19 @@ impl<'w> PlanningProblem<'w> {
         } else {
             Vec::new()
         };
+        Self::with_corridors(world, kind, init, corridors)
+    }
+
+    /// [`Self::new`] with the corridors of an earlier problem on the same world
+    /// ([`Self::corridors`]), so that a caller that rebuilds the problem (the Python
+    /// binding, per call) does not search them again.
+    #[must_use]
+    pub fn with_corridors(
+        world: &'w World,
+        kind: EncodingKind,
+        init: InitKind,
+        corridors: crate::encoding::corridor::Corridors,
+    ) -> Self {
         let mut path_encoding = encoding::build_along(kind, world, &corridors);
         let timing = &world.spec.timing;
         if timing.pace_is_free() {
@@ -61,6 +74,12 @@ impl<'w> PlanningProblem<'w> {
     #[must_use]
     pub fn init(&self) -> InitKind {
         self.init
+    }
+
+    /// The threat-free corridors the `corridor` initialisation follows (empty otherwise).
+    #[must_use]
+    pub fn corridors(&self) -> &[Vec<glam::DVec2>] {
+        &self.corridors
     }
 
     /// The decision vector nearest to `plan` in this encoding.

@@ -77,3 +77,30 @@ fn feasible_on_a_small_generated_scenario_within_6000_evaluations() {
         );
     }
 }
+
+#[test]
+fn a_problem_rebuilt_with_earlier_corridors_samples_as_the_original() {
+    // The Python binding rebuilds its planning problem per call from the corridors it
+    // searched once; that must be the same problem.
+    use swarmplan_core::encoding::{EncodingKind, InitKind};
+    use swarmplan_core::planning::PlanningProblem;
+    use swarmplan_core::problem::Problem as _;
+    let world = generated();
+    let first = PlanningProblem::new(&world, EncodingKind::Spherical, InitKind::Corridor);
+    assert!(first.corridors().iter().all(|c| c.len() >= 2));
+    let again = PlanningProblem::with_corridors(
+        &world,
+        EncodingKind::Spherical,
+        InitKind::Corridor,
+        first.corridors().to_vec(),
+    );
+    let sample = |p: &PlanningProblem<'_>| {
+        let mut rng = swarmplan_core::rng::rng_from_seed(9);
+        let mut x = vec![0.0; p.bounds().len()];
+        p.sample_initial(&mut rng, &mut x);
+        x
+    };
+    let (a, b) = (sample(&first), sample(&again));
+    assert_eq!(a, b);
+    assert_eq!(first.evaluate(&a), again.evaluate(&b));
+}

@@ -32,10 +32,13 @@ const DANGER_FACTOR: f64 = 10.0;
 /// Extra margin for the corner cut of a flown turn, metres.
 const CORNER_CUT: f64 = 10.0;
 
+/// One corridor per UAV, start to goal ([`corridors`]).
+pub type Corridors = Vec<Vec<DVec2>>;
+
 /// One corridor per UAV (the same for UAVs sharing a start and size): the polyline from the
 /// start to the goal, or empty when none was found.
 #[must_use]
-pub fn corridors(world: &World) -> Vec<Vec<DVec2>> {
+pub fn corridors(world: &World) -> Corridors {
     let goal = world.goal.truncate();
     let mut out: Vec<Vec<DVec2>> = Vec::new();
     let mut done: Vec<(DVec2, f64, usize)> = Vec::new();
