@@ -329,7 +329,7 @@ fn to_plan(
     }
     let pace = pace.unwrap_or(1.0);
     let [lo, hi] = world.spec.timing.pace;
-    if !(pace.is_finite() && pace > 0.0 && (lo..=hi).contains(&pace)) {
+    if !(pace.is_finite() && pace > 0.0 && world.spec.timing.allows_pace(pace)) {
         return Err(invalid(format!(
             "pace {pace}: scenario `{}` allows timing.pace [{lo}, {hi}]",
             world.spec.name

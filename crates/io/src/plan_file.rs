@@ -180,7 +180,7 @@ pub fn parse_plan(
         ));
     }
     let [lo, hi] = world.spec.timing.pace;
-    if provenance == Provenance::MustMatch && !(lo..=hi).contains(&file.pace) {
+    if provenance == Provenance::MustMatch && !world.spec.timing.allows_pace(file.pace) {
         return Err(PlanFileError::Provenance {
             path: origin.to_string(),
             what: "pace",

@@ -397,6 +397,13 @@ impl TimingSpec {
     pub fn pace_is_free(&self) -> bool {
         self.pace[0] < self.pace[1]
     }
+
+    /// Whether a plan may fly at pace `p` here (inside `pace`, bounds included), as plan
+    /// files and re-imported missions are checked.
+    #[must_use]
+    pub fn allows_pace(&self, p: f64) -> bool {
+        (self.pace[0]..=self.pace[1]).contains(&p)
+    }
 }
 
 /// Decision-variable layout and seeds.
