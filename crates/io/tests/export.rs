@@ -501,6 +501,24 @@ fn reimport_errors_name_the_file_and_the_problem() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("FeatureCollection"), "{e}");
+    for bad in ["inf", "x", "-1"] {
+        let e = parse_csv(
+            &format!(
+                "uav,lat_deg,lon_deg,alt_amsl_m,pace\n0,-10.45,105.62,100,{bad}\n1,-10.45,105.62,100,{bad}\n"
+            ),
+            "m.csv",
+            &world,
+            &f,
+        )
+        .unwrap_err()
+        .to_string();
+        let named = if bad == "-1" {
+            e.contains("pace -1") && e.contains("timing.pace [1, 1]")
+        } else {
+            e.contains("line 2") && e.contains("pace: expected a number")
+        };
+        assert!(named, "{bad}: {e}");
+    }
 }
 
 #[test]
