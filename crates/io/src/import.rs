@@ -120,7 +120,7 @@ pub fn parse_csv(
         need("alt_amsl_m")?,
     );
     let (cwp, cagl, cpace) = (col("waypoint"), col("alt_agl_m"), col("pace"));
-    let mut pace: Option<(f64, usize)> = None;
+    let mut pace: Option<(f64, String)> = None;
     let mut rows: BTreeMap<usize, Vec<(usize, Fix)>> = BTreeMap::new();
     for (line, l) in lines {
         let f: Vec<&str> = l.split(',').map(str::trim).collect();
@@ -154,18 +154,8 @@ pub fn parse_csv(
         };
         if let Some(c) = cpace {
             let p = number(c)?;
-            match pace {
-                None => pace = Some((p, line)),
-                Some((first, at)) if first.to_bits() != p.to_bits() => {
-                    return Err(line_err(
-                        line,
-                        format!(
-                            "pace: expected the fleet's one pace, {first} (line {at}), got {p}"
-                        ),
-                    ));
-                }
-                Some(_) => {}
-            }
+            one_pace(&mut pace, p, format!("line {line}"))
+                .map_err(|m| line_err(line, format!("pace: {m}")))?;
         }
         let uav = index(cu)?;
         let entry = rows.entry(uav).or_default();
@@ -224,7 +214,7 @@ pub fn parse_geojson(
         .as_array()
         .ok_or_else(|| invalid("`features` is not an array".into()))?;
     let mut by_uav: BTreeMap<usize, Vec<Fix>> = BTreeMap::new();
-    let mut pace: Option<(f64, usize)> = None;
+    let mut pace: Option<(f64, String)> = None;
     for (k, f) in features.iter().enumerate() {
         let props = &f["properties"];
         let is_path = props["kind"] == "path"
@@ -247,15 +237,8 @@ pub fn parse_geojson(
                     props["pace"]
                 ))
             })?;
-            match pace {
-                None => pace = Some((p, k)),
-                Some((first, at)) if first.to_bits() != p.to_bits() => {
-                    return Err(invalid(format!(
-                        "{here}.properties.pace: expected the fleet's one pace, {first} (features[{at}]), got {p}"
-                    )));
-                }
-                Some(_) => {}
-            }
+            one_pace(&mut pace, p, here.clone())
+                .map_err(|m| invalid(format!("{here}.properties.pace: {m}")))?;
         }
         let coords = f["geometry"]["coordinates"]
             .as_array()
@@ -305,6 +288,21 @@ pub fn parse_geojson(
         paths.push(fixes);
     }
     to_plan(paths, pace.map(|(p, _)| p), name, world, frame)
+}
+
+/// Keeps the first pace read (with where it was read) and refuses a later one that is not
+/// the same bits: a fleet flies at one pace.
+fn one_pace(first: &mut Option<(f64, String)>, p: f64, at: String) -> Result<(), String> {
+    match first {
+        None => *first = Some((p, at)),
+        Some((q, there)) if q.to_bits() != p.to_bits() => {
+            return Err(format!(
+                "expected the fleet's one pace, {q} ({there}), got {p}"
+            ));
+        }
+        Some(_) => {}
+    }
+    Ok(())
 }
 
 /// Converts imported fixes to a plan and checks it against the world.
