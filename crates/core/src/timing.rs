@@ -158,6 +158,9 @@ pub struct TimedPlan {
     pub pace: f64,
     /// Latest arrival (s).
     pub horizon: f64,
+    /// Per UAV, what its flown geometry in `paths` was last made from by
+    /// [`TimedPlan::fill_flown`], so that a UAV whose waypoints did not change keeps it.
+    flown_from: Vec<FlownSource>,
 }
 
 impl Default for TimedPlan {
@@ -166,7 +169,34 @@ impl Default for TimedPlan {
             paths: Vec::new(),
             pace: 1.0,
             horizon: 0.0,
+            flown_from: Vec::new(),
         }
+    }
+}
+
+/// The inputs of one UAV's flown geometry: its turning radius and waypoints (absolute
+/// altitudes), as bits so that -0.0 and 0.0 (or two NaNs) are told apart.
+#[derive(Debug, Clone, Default)]
+struct FlownSource {
+    radius: u64,
+    abs: Vec<[u64; 3]>,
+}
+
+impl FlownSource {
+    fn bits(v: DVec3) -> [u64; 3] {
+        [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()]
+    }
+
+    fn is(&self, radius: f64, abs: &[DVec3]) -> bool {
+        self.radius == radius.to_bits()
+            && self.abs.len() == abs.len()
+            && self.abs.iter().zip(abs).all(|(a, b)| *a == Self::bits(*b))
+    }
+
+    fn set(&mut self, radius: f64, abs: &[DVec3]) {
+        self.radius = radius.to_bits();
+        self.abs.clear();
+        self.abs.extend(abs.iter().map(|v| Self::bits(*v)));
     }
 }
 
@@ -193,19 +223,34 @@ impl TimedPlan {
 
     /// The flown trajectory of `waypoints` (an arc of each UAV's turning radius through
     /// every corner, [`crate::flight`]), timed by the same policy on its own lengths.
+    ///
+    /// The geometry is a pure function of a UAV's waypoints and radius, so a UAV whose
+    /// waypoints are bit for bit those of the previous fill of this plan keeps the arcs it
+    /// has (the optimizers that change one UAV at a time rebuild one of n); only the timing
+    /// is redone for all. Nothing else may write the geometry of `paths` in between.
     pub fn fill_flown(&mut self, world: &World, waypoints: &TimedPlan) {
         let n = waypoints.paths.len();
         self.pace = waypoints.pace;
+        if self.flown_from.len() != self.paths.len() {
+            self.flown_from.clear();
+        }
         self.paths.resize_with(n, TimedPath::default);
-        for (u, (tp, wp)) in self.paths.iter_mut().zip(&waypoints.paths).enumerate() {
+        self.flown_from.resize_with(n, FlownSource::default);
+        let sources = self.paths.iter_mut().zip(&mut self.flown_from);
+        for (u, ((tp, source), wp)) in sources.zip(&waypoints.paths).enumerate() {
+            let radius = world.spec.uavs[u].turn_radius;
+            if !tp.abs.is_empty() && source.is(radius, &wp.abs) {
+                continue;
+            }
             crate::flight::flown_polyline(
                 &wp.abs,
-                world.spec.uavs[u].turn_radius,
+                radius,
                 &mut tp.tangents,
                 &mut tp.abs,
                 &mut tp.flown,
             );
             tp.fill_lengths();
+            source.set(radius, &wp.abs);
         }
         self.schedule(world);
     }

@@ -1,7 +1,8 @@
 //! Incremental evaluation equals full evaluation (issue 12).
 //!
 //! The proximity sweep keeps the pair results of the previous evaluation on the same
-//! buffers and reuses those of pairs whose motions did not change. An evaluation after a
+//! buffers and reuses those of pairs whose motions did not change, and the flown path keeps
+//! the arcs of UAVs whose waypoints did not change (`TimedPlan::fill_flown`). An evaluation after a
 //! change to some UAVs must give, bit for bit, what a sweep of every pair on fresh buffers
 //! gives: the same cost, violation measure, per-UAV reports and violation list, whatever the
 //! sequence of changes before it. Checked over random plans and random changes on worlds

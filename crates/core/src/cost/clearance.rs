@@ -51,11 +51,8 @@ pub fn check_clearance(
         }
     }
     let p = &flown.abs;
-    for s in 0..p.len().saturating_sub(1) {
+    let mut check_segment = |s: usize| {
         let (a, b) = (p[s], p[s + 1]);
-        if !exact && terrain.segment_clears(a, b, map.clearance, map.clearance_step) {
-            continue;
-        }
         let n = ((a.truncate().distance(b.truncate()) / map.clearance_step).ceil() as usize).max(1);
         let mut worst = f64::INFINITY;
         let mut worst_at = a;
@@ -93,6 +90,17 @@ pub fn check_clearance(
                 },
             );
         }
+    };
+    if exact {
+        (0..p.len().saturating_sub(1)).for_each(&mut check_segment);
+    } else {
+        // Only the segments the terrain's pyramid does not accept at once need samples.
+        terrain.for_each_segment_not_clear(
+            p,
+            map.clearance,
+            map.clearance_step,
+            &mut check_segment,
+        );
     }
     min_clear
 }
