@@ -317,36 +317,70 @@ pub fn flown_polyline(
 /// Reports every arc chord of UAV `uav`'s flown path `tp` that enters a threat cylinder
 /// (radius r + drone size): a corner the waypoint segments clear can be cut into one. The
 /// straight pieces lie on the waypoint segments, which the threat term checks already.
+///
+/// An arc is flown as many short chords; the threats whose square the box of the whole arc
+/// misses are missed by every chord's box inside it, so each arc first picks the threats it
+/// may touch (among the first 64; later ones are checked chord by chord) and its chords are
+/// checked against those only, in the same order as chord by chord.
 pub fn check_arc_threats(world: &World, uav: usize, tp: &TimedPath, sink: &mut ViolationSink) {
     let size = world.spec.uavs[uav].size;
-    for (s, seg) in tp.flown.iter().enumerate().filter(|(_, f)| f.arc) {
-        let (a, b) = (tp.abs[s], tp.abs[s + 1]);
-        for t in &world.spec.threats {
-            let hard = t.r + size;
-            if segment_box_misses(t, a, b, hard) {
-                continue;
-            }
-            let d = point_segment_distance((t.x, t.y), (a.x, a.y), (b.x, b.y));
-            if d < hard {
-                sink.add(
-                    ViolationKind::Threat,
-                    uav,
-                    hard - d,
-                    At {
-                        index: Some(seg.waypoint_segment),
-                        position: Some(a.lerp(b, 0.5)),
-                        time: Some(0.5 * (tp.time_at(s) + tp.time_at(s + 1))),
-                        ..At::default()
-                    },
-                    || {
-                        format!(
-                            "the flown arc passes {d:.1} m from the axis of threat ({:.0}, {:.0}, r {:.0}); limit {hard:.1} m",
-                            t.x, t.y, t.r
-                        )
-                    },
-                );
+    let threats = &world.spec.threats;
+    let mut s = 0;
+    while s < tp.flown.len() {
+        let seg = tp.flown[s];
+        if !seg.arc {
+            s += 1;
+            continue;
+        }
+        // The arc: chords s..end, all from the same corner.
+        let end = s + tp.flown[s..]
+            .iter()
+            .take_while(|f| f.arc && f.waypoint_segment == seg.waypoint_segment)
+            .count();
+        let (mut lo, mut hi) = (tp.abs[s], tp.abs[s]);
+        for p in &tp.abs[s + 1..=end] {
+            lo = lo.min(*p);
+            hi = hi.max(*p);
+        }
+        let mut near: u64 = 0;
+        for (i, t) in threats.iter().enumerate().take(64) {
+            if !segment_box_misses(t, lo, hi, t.r + size) {
+                near |= 1 << i;
             }
         }
+        for c in s..end {
+            let (a, b) = (tp.abs[c], tp.abs[c + 1]);
+            for (i, t) in threats.iter().enumerate() {
+                if i < 64 && near & (1 << i) == 0 {
+                    continue;
+                }
+                let hard = t.r + size;
+                if segment_box_misses(t, a, b, hard) {
+                    continue;
+                }
+                let d = point_segment_distance((t.x, t.y), (a.x, a.y), (b.x, b.y));
+                if d < hard {
+                    sink.add(
+                        ViolationKind::Threat,
+                        uav,
+                        hard - d,
+                        At {
+                            index: Some(seg.waypoint_segment),
+                            position: Some(a.lerp(b, 0.5)),
+                            time: Some(0.5 * (tp.time_at(c) + tp.time_at(c + 1))),
+                            ..At::default()
+                        },
+                        || {
+                            format!(
+                                "the flown arc passes {d:.1} m from the axis of threat ({:.0}, {:.0}, r {:.0}); limit {hard:.1} m",
+                                t.x, t.y, t.r
+                            )
+                        },
+                    );
+                }
+            }
+        }
+        s = end;
     }
 }
 

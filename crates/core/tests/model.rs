@@ -579,3 +579,65 @@ fn a_free_pace_is_one_more_variable_per_uav_and_the_plan_flies_it() {
         assert_eq!(a.decode(&y).pace, 1.0);
     }
 }
+
+/// The arcs' threat check (which first picks the threats an arc's box may touch, among the
+/// first 64) finds, in the same order, what checking every chord against every threat finds.
+#[test]
+fn arc_threat_check_finds_what_a_chord_by_chord_check_finds() {
+    use swarmplan_core::feasibility::{FeasibilityProfile, ViolationSink};
+    use swarmplan_core::flight::check_arc_threats;
+    use swarmplan_core::timing::TimedPlan;
+    use swarmplan_core::world::threat::{point_segment_distance, segment_box_misses};
+    let mut s = spec(&[[50.0, 50.0, 150.0]]);
+    // 90 small threats on a grid: more than the filter's 64, many near the corners.
+    s.threats = (0..90)
+        .map(|i| Threat {
+            x: 60.0 + (i % 10) as f64 * 95.0,
+            y: 60.0 + (i / 10) as f64 * 100.0,
+            z: 100.0,
+            r: 8.0 + (i % 7) as f64 * 3.0,
+        })
+        .collect();
+    let world = World::new(s, flat()).unwrap();
+    assert!(world.flies_arcs());
+    let (mut found, mut chords) = (0, 0);
+    for r in 0..40_usize {
+        let f = |k: usize, m: f64| ((r * k * 7919 + k * 104_729) % 1000) as f64 / 1000.0 * m;
+        let mut points = vec![[50.0, 50.0, 150.0]];
+        points.extend((1..9).map(|k| [60.0 + f(2 * k, 880.0), 60.0 + f(2 * k + 1, 880.0), 150.0]));
+        points.push([900.0, 900.0, 150.0]);
+        let plan = Plan {
+            uavs: vec![path(&points)],
+            ..Plan::default()
+        };
+        let flown = TimedPlan::flown(&world, &plan);
+        let tp = &flown.paths[0];
+        let mut sink = ViolationSink::collecting(FeasibilityProfile::Strict);
+        check_arc_threats(&world, 0, tp, &mut sink);
+        let got: Vec<(Option<usize>, Option<[f64; 3]>, u64)> = sink
+            .list
+            .unwrap()
+            .iter()
+            .map(|v| (v.index, v.position, v.amount.to_bits()))
+            .collect();
+        let mut expected = Vec::new();
+        for (c, seg) in tp.flown.iter().enumerate().filter(|(_, f)| f.arc) {
+            chords += 1;
+            let (a, b) = (tp.abs[c], tp.abs[c + 1]);
+            for t in &world.spec.threats {
+                let hard = t.r + world.spec.uavs[0].size;
+                if segment_box_misses(t, a, b, hard) {
+                    continue;
+                }
+                let d = point_segment_distance((t.x, t.y), (a.x, a.y), (b.x, b.y));
+                if d < hard {
+                    let at = a.lerp(b, 0.5).to_array();
+                    expected.push((Some(seg.waypoint_segment), Some(at), (hard - d).to_bits()));
+                }
+            }
+        }
+        assert_eq!(got, expected, "path {r}");
+        found += expected.len();
+    }
+    assert!(found > 20 && chords > 500, "{found} violations, {chords} chords");
+}
