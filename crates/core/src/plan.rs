@@ -1,6 +1,8 @@
 //! A plan: one path per UAV, each a list of waypoints [x, y, z above ground] from the start
 //! to the goal (both included), and the fleet's pace (1 unless the scenario lets the planner
-//! choose it, `timing.pace`). This is what encodings decode into and what `evaluate` reads.
+//! choose it, `timing.pace`) and each UAV's departure delay (0 unless the scenario lets the
+//! planner choose them, `timing.max_delay`). This is what encodings decode into and what
+//! `evaluate` reads.
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -19,6 +21,11 @@ pub struct Plan {
     /// cruise, 1.3 is 30 % faster where the speed limits allow. Written only when not 1.
     #[serde(default = "unit_pace", skip_serializing_if = "is_unit_pace")]
     pub pace: f64,
+    /// Per UAV, its departure delay as a share of its arrival time ([`crate::timing`]):
+    /// it hovers at its start until then. Empty (or missing entries) means 0; written only
+    /// when some delay is not 0.
+    #[serde(default, skip_serializing_if = "no_delays")]
+    pub delays: Vec<f64>,
 }
 
 impl Default for Plan {
@@ -26,8 +33,16 @@ impl Default for Plan {
         Self {
             uavs: Vec::new(),
             pace: 1.0,
+            delays: Vec::new(),
         }
     }
+}
+
+/// Whether every delay is 0 (such a `delays` field is not written).
+#[allow(clippy::float_cmp)]
+#[must_use]
+pub fn no_delays(d: &[f64]) -> bool {
+    d.iter().all(|x| *x == 0.0)
 }
 
 /// Pace 1, the serde default of every `pace` field (plans, plan files).
@@ -56,6 +71,15 @@ impl Plan {
                     .collect(),
             })
             .collect();
-        Self { uavs, pace: 1.0 }
+        Self {
+            uavs,
+            ..Self::default()
+        }
+    }
+
+    /// UAV `u`'s departure delay, a share of its arrival time (0 when not set).
+    #[must_use]
+    pub fn delay(&self, u: usize) -> f64 {
+        self.delays.get(u).copied().unwrap_or(0.0)
     }
 }

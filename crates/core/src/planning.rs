@@ -61,6 +61,13 @@ impl<'w> PlanningProblem<'w> {
                 timing.pace,
             ));
         }
+        if timing.delay_is_free() {
+            path_encoding = Box::new(encoding::delayed::Delayed::new(
+                path_encoding,
+                world.uav_count(),
+                timing.max_delay,
+            ));
+        }
         Self {
             world,
             encoding: path_encoding,
@@ -122,6 +129,19 @@ impl PlanningProblem<'_> {
             plan.pace = lo + u * (hi - lo);
         }
     }
+
+    /// Each UAV's departure delay uniform in [0, max_delay] when delays are free (no draw
+    /// otherwise).
+    fn draw_delays(&self, rng: &mut Rng, plan: &mut Plan) {
+        let timing = &self.world.spec.timing;
+        plan.delays.clear();
+        if timing.delay_is_free() {
+            for _ in 0..self.world.uav_count() {
+                let u: f64 = rand::Rng::random(rng);
+                plan.delays.push(u * timing.max_delay);
+            }
+        }
+    }
 }
 
 impl Problem for PlanningProblem<'_> {
@@ -153,10 +173,12 @@ impl Problem for PlanningProblem<'_> {
         })
     }
 
-    /// One UAV's path: 3 values per free waypoint, and its pace value when the pace is free
-    /// ([`encoding::paced`]).
+    /// One UAV's path: 3 values per free waypoint, its pace value when the pace is free
+    /// ([`encoding::paced`]) and its departure delay when delays are free
+    /// ([`encoding::delayed`]).
     fn block_size(&self) -> usize {
-        3 * self.frame.n + usize::from(self.world.spec.timing.pace_is_free())
+        let timing = &self.world.spec.timing;
+        3 * self.frame.n + usize::from(timing.pace_is_free()) + usize::from(timing.delay_is_free())
     }
 
     fn sample_initial(&self, rng: &mut Rng, out: &mut [f64]) {
@@ -166,12 +188,14 @@ impl Problem for PlanningProblem<'_> {
                 let mut plan = Plan::default();
                 sample_line_plan(&self.frame, rng, &mut plan);
                 self.draw_pace(rng, &mut plan);
+                self.draw_delays(rng, &mut plan);
                 self.encoding.encode_into(&plan, out);
             }
             InitKind::Corridor => {
                 let mut plan = Plan::default();
                 sample_corridor_plan(&self.frame, &self.corridors, rng, &mut plan);
                 self.draw_pace(rng, &mut plan);
+                self.draw_delays(rng, &mut plan);
                 self.encoding.encode_into(&plan, out);
             }
         }

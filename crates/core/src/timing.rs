@@ -7,6 +7,13 @@
 //!   safety term and the feasibility checker say so.
 //! - *cruise*: every UAV flies at its own cruise speed.
 //!
+//! A UAV may also wait before it leaves (its *departure delay*, a share delta_i of its
+//! arrival time that the planner chooses where `timing.max_delay` > 0): it hovers at its
+//! start until delta_i x arrival and flies the rest at constant speed. Under common arrival
+//! everyone still arrives at T, so UAV i flies L_i in (1 - delta_i) T: its effective length
+//! in the choice of T is L_i / (1 - delta_i). With every delay 0 (the default) nothing here
+//! changes, bit for bit.
+//!
 //! Both scale the preferred speed by the plan's *pace* (1 unless the scenario's
 //! `timing.pace` range lets the planner choose it): common arrival prefers T / pace, then
 //! clamps as above; cruise flies pace times cruise. Why a pace: the channel varies in time,
@@ -37,6 +44,10 @@ pub struct TimedPath {
     pub speed: f64,
     /// Arrival time (s).
     pub arrival: f64,
+    /// Departure delay as a share of the arrival time ([`Plan::delay`]): 0 leaves at once.
+    pub delay: f64,
+    /// Departure time (s): it hovers at its start until then.
+    pub depart: f64,
     /// Of a flown path ([`TimedPlan::fill_flown`]): where each segment comes from (an arc
     /// chord or a straight piece, of which waypoint segment). Empty for a waypoint path.
     pub flown: Vec<crate::flight::FlownSegment>,
@@ -70,6 +81,8 @@ impl TimedPath {
                 .collect();
         }
         let mut times = vec![0.0; waypoints];
+        // It leaves its start at its departure (it hovered there until then).
+        times[0] = self.depart;
         times[waypoints - 1] = self.arrival;
         let mut arc_span: Vec<Option<(f64, f64)>> = vec![None; waypoints];
         let mut first_vertex: Vec<Option<f64>> = vec![None; waypoints];
@@ -109,10 +122,26 @@ impl TimedPath {
     /// Time at which waypoint k is reached.
     #[must_use]
     pub fn time_at(&self, k: usize) -> f64 {
-        if self.speed > 0.0 {
+        let flying = if self.speed > 0.0 {
             self.cum[k] / self.speed
         } else {
             0.0
+        };
+        if self.depart > 0.0 {
+            self.depart + flying
+        } else {
+            flying
+        }
+    }
+
+    /// Arc length flown by time t (negative before departure, which positions clamp to the
+    /// start).
+    #[must_use]
+    pub fn length_at_time(&self, t: f64) -> f64 {
+        if self.depart > 0.0 {
+            self.speed * (t - self.depart)
+        } else {
+            self.speed * t
         }
     }
 
@@ -143,10 +172,11 @@ impl TimedPath {
         (self.abs[k].lerp(self.abs[k + 1], f), k)
     }
 
-    /// Position at time t (the UAV waits at its goal after arriving).
+    /// Position at time t (the UAV waits at its start before departing and at its goal
+    /// after arriving).
     #[must_use]
     pub fn position_at_time(&self, t: f64) -> DVec3 {
-        self.position_at_length(self.speed * t, 0).0
+        self.position_at_length(self.length_at_time(t), 0).0
     }
 }
 
@@ -213,10 +243,11 @@ impl TimedPlan {
         let n = plan.uavs.len();
         self.pace = plan.pace;
         self.paths.resize_with(n, TimedPath::default);
-        for (tp, path) in self.paths.iter_mut().zip(&plan.uavs) {
+        for (u, (tp, path)) in self.paths.iter_mut().zip(&plan.uavs).enumerate() {
             tp.fill_geometry(world, path);
             tp.flown.clear();
             tp.tangents.clear();
+            tp.delay = plan.delay(u);
         }
         self.schedule(world);
     }
@@ -252,6 +283,9 @@ impl TimedPlan {
             tp.fill_lengths();
             source.set(radius, &wp.abs);
         }
+        for (tp, wp) in self.paths.iter_mut().zip(&waypoints.paths) {
+            tp.delay = wp.delay;
+        }
         self.schedule(world);
     }
 
@@ -268,26 +302,44 @@ impl TimedPlan {
         flown
     }
 
-    /// Speeds, arrivals and the horizon from the paths' lengths under the timing policy.
+    /// Speeds, departures, arrivals and the horizon from the paths' lengths and delays under
+    /// the timing policy.
     fn schedule(&mut self, world: &World) {
         let uavs = &world.spec.uavs;
         match world.spec.timing.policy {
             TimingPolicy::Cruise => {
                 for (tp, u) in self.paths.iter_mut().zip(uavs) {
                     tp.speed = u.cruise_speed * self.pace;
-                    tp.arrival = tp.length / tp.speed;
+                    let flight = tp.length / tp.speed;
+                    if tp.delay > 0.0 {
+                        // delta of the arrival time waiting: depart = delta / (1 - delta) x flight.
+                        tp.depart = tp.delay / (1.0 - tp.delay) * flight;
+                        tp.arrival = tp.depart + flight;
+                    } else {
+                        tp.depart = 0.0;
+                        tp.arrival = flight;
+                    }
                 }
             }
             TimingPolicy::CommonArrival => {
+                // A UAV that waits delta T flies its length in (1 - delta) T.
+                let effective = |p: &TimedPath| {
+                    if p.delay > 0.0 {
+                        p.length / (1.0 - p.delay)
+                    } else {
+                        p.length
+                    }
+                };
                 let t = common_arrival_time_at_pace(
                     self.paths
                         .iter()
                         .zip(uavs)
-                        .map(|(p, u)| (p.length, u.cruise_speed, u.speed[0], u.speed[1])),
+                        .map(|(p, u)| (effective(p), u.cruise_speed, u.speed[0], u.speed[1])),
                     self.pace,
                 );
                 for tp in &mut self.paths {
-                    tp.speed = if t > 0.0 { tp.length / t } else { 0.0 };
+                    tp.speed = if t > 0.0 { effective(tp) / t } else { 0.0 };
+                    tp.depart = if tp.delay > 0.0 { tp.delay * t } else { 0.0 };
                     tp.arrival = t;
                 }
             }
@@ -301,7 +353,7 @@ impl TimedPlan {
     /// a forward sweep over increasing times linear in samples plus segments.
     pub fn sample(&self, t: f64, hints: &mut [usize], out: &mut [DVec3]) {
         for ((tp, h), o) in self.paths.iter().zip(hints.iter_mut()).zip(out.iter_mut()) {
-            let (p, k) = tp.position_at_length(tp.speed * t, *h);
+            let (p, k) = tp.position_at_length(tp.length_at_time(t), *h);
             *h = k;
             *o = p;
         }
@@ -382,8 +434,7 @@ mod tests {
             length: 20.0,
             speed: 2.0,
             arrival: 10.0,
-            flown: Vec::new(),
-            tangents: Vec::new(),
+            ..TimedPath::default()
         };
         assert!(tp.position_at_time(2.5).distance(DVec3::new(5.0, 0.0, 0.0)) < 1e-12);
         assert!(

@@ -112,6 +112,7 @@ fn a_ninety_degree_turn_violates_and_a_thirty_degree_one_does_not() {
     let w = World::new(spec(&[[100.0, 100.0, 150.0]]), flat()).unwrap();
     let sharp = Plan {
         pace: 1.0,
+        delays: Vec::new(),
         uavs: vec![path(&[
             [100.0, 100.0, 150.0],
             [900.0, 100.0, 150.0],
@@ -126,6 +127,7 @@ fn a_ninety_degree_turn_violates_and_a_thirty_degree_one_does_not() {
     let mid = [550.0, 450.0, 150.0];
     let gentle = Plan {
         pace: 1.0,
+        delays: Vec::new(),
         uavs: vec![path(&[[100.0, 100.0, 150.0], mid, [900.0, 900.0, 150.0]])],
     };
     assert!(
@@ -140,6 +142,7 @@ fn a_steep_climb_violates() {
     let w = World::new(spec(&[[100.0, 100.0, 150.0]]), flat()).unwrap();
     let plan = Plan {
         pace: 1.0,
+        delays: Vec::new(),
         uavs: vec![path(&[
             [100.0, 100.0, 100.0],
             [130.0, 130.0, 200.0],
@@ -174,6 +177,7 @@ fn crossing_at_the_same_time_violates_separation_and_at_different_times_does_not
     ]);
     let plan = Plan {
         pace: 1.0,
+        delays: Vec::new(),
         uavs: vec![a.clone(), b],
     };
     let v = check(&w, &plan);
@@ -197,6 +201,7 @@ fn crossing_at_the_same_time_violates_separation_and_at_different_times_does_not
     let w2 = World::new(s2, flat()).unwrap();
     let plan2 = Plan {
         pace: 1.0,
+        delays: Vec::new(),
         uavs: vec![a, late],
     };
     assert!(
@@ -253,6 +258,7 @@ fn terrain_in_the_way_violates_clearance() {
     let w = World::new(spec(&[[100.0, 100.0, 150.0]]), t).unwrap();
     let plan = Plan {
         pace: 1.0,
+        delays: Vec::new(),
         uavs: vec![path(&[
             [100.0, 100.0, 150.0],
             [200.0, 200.0, 150.0],
@@ -354,6 +360,7 @@ fn bent(corner: [f64; 2], turns_deg: &[f64], legs: &[f64]) -> (ScenarioSpec, Pla
         s,
         Plan {
             pace: 1.0,
+            delays: Vec::new(),
             uavs: vec![path(&points)],
         },
     )
@@ -454,6 +461,7 @@ fn repeated_waypoints_outside_the_map_are_reported_at_the_waypoint() {
     s.goal.position = [900.0, 100.0, 150.0];
     let plan = Plan {
         pace: 1.0,
+        delays: Vec::new(),
         uavs: vec![path(&[
             [100.0, 100.0, 150.0],
             [500.0, 100.0, 150.0],
@@ -488,6 +496,7 @@ fn a_flight_longer_than_the_swept_horizon_is_a_communication_violation_not_a_han
     let w = World::new(s, flat()).unwrap();
     let plan = Plan {
         pace: 1.0,
+        delays: Vec::new(),
         uavs: vec![path(&[
             [100.0, 100.0, 150.0],
             [500.0, 500.0, 1e50],
@@ -514,6 +523,7 @@ fn the_pace_scales_the_preferred_speed_within_the_limits() {
     let w = World::new(spec(&[[100.0, 100.0, 150.0]]), flat()).unwrap();
     let line = |pace| Plan {
         pace,
+        delays: Vec::new(),
         uavs: vec![path(&[[100.0, 100.0, 150.0], [900.0, 900.0, 150.0]])],
     };
     let speed = |pace| TimedPlan::new(&w, &line(pace)).paths[0].speed;
@@ -639,5 +649,91 @@ fn arc_threat_check_finds_what_a_chord_by_chord_check_finds() {
         assert_eq!(got, expected, "path {r}");
         found += expected.len();
     }
-    assert!(found > 20 && chords > 500, "{found} violations, {chords} chords");
+    assert!(
+        found > 20 && chords > 500,
+        "{found} violations, {chords} chords"
+    );
+}
+
+/// Common arrival with a departure delay: UAV 1 waits half the mission, so it flies its
+/// 800 sqrt(2) m in T / 2; T minimises the speeds' distance to cruise with UAV 1's length
+/// counted twice (T = 5 L / (3 c)), it hovers at its start until T / 2, and both arrive at T.
+#[test]
+fn a_delayed_uav_hovers_at_its_start_and_arrives_with_the_others() {
+    use swarmplan_core::timing::TimedPlan;
+    let starts = [[100.0, 100.0, 150.0], [100.0, 100.0, 150.0]];
+    let w = World::new(spec(&starts), flat()).unwrap();
+    let line = path(&[[100.0, 100.0, 150.0], [900.0, 900.0, 150.0]]);
+    let plan = Plan {
+        uavs: vec![line.clone(), line],
+        delays: vec![0.0, 0.5],
+        ..Plan::default()
+    };
+    let timed = TimedPlan::new(&w, &plan);
+    let l = 800.0 * 2f64.sqrt();
+    let t = 5.0 * l / (3.0 * 15.0);
+    let (a, b) = (&timed.paths[0], &timed.paths[1]);
+    assert!((a.arrival - t).abs() < 1e-9 && (b.arrival - t).abs() < 1e-9);
+    assert!((b.depart - 0.5 * t).abs() < 1e-9 && a.depart == 0.0);
+    assert!((a.speed - l / t).abs() < 1e-9 && (b.speed - 2.0 * l / t).abs() < 1e-9);
+    let start = DVec3::new(100.0, 100.0, 150.0);
+    assert_eq!(b.position_at_time(0.49 * t), start);
+    assert!(a.position_at_time(0.49 * t).distance(start) > 0.4 * l);
+    assert!(
+        b.position_at_time(0.75 * t)
+            .distance(a.position_at_time(0.5 * t))
+            < 1e-6
+    );
+    assert!((b.time_at(1) - t).abs() < 1e-9 && (b.time_at(0) - 0.5 * t).abs() < 1e-9);
+    // No delays: the same bits as before delays existed (a plan without the field).
+    let plain = Plan {
+        delays: Vec::new(),
+        ..plan.clone()
+    };
+    let zeros = Plan {
+        delays: vec![0.0, 0.0],
+        ..plan
+    };
+    let (p, z) = (TimedPlan::new(&w, &plain), TimedPlan::new(&w, &zeros));
+    assert_eq!(p.paths[1].speed.to_bits(), z.paths[1].speed.to_bits());
+    assert_eq!(
+        p.paths[1].time_at(1).to_bits(),
+        z.paths[1].time_at(1).to_bits()
+    );
+}
+
+/// Under the cruise policy a delay of delta of the arrival hovers delta / (1 - delta) of the
+/// flight time, and the battery pays the hover power for it.
+#[test]
+fn hovering_before_departure_costs_hover_power() {
+    let mut s = spec(&[[100.0, 100.0, 150.0]]);
+    s.timing.policy = TimingPolicy::Cruise;
+    let w = World::new(s, flat()).unwrap();
+    let line = path(&[[100.0, 100.0, 150.0], [900.0, 900.0, 150.0]]);
+    let at = |delay: f64| {
+        let plan = Plan {
+            uavs: vec![line.clone()],
+            delays: vec![delay],
+            ..Plan::default()
+        };
+        assess(&w, &plan, true).per_uav[0].clone()
+    };
+    let (now, later) = (at(0.0), at(0.25));
+    let flight = 800.0 * 2f64.sqrt() / 15.0;
+    let hover_s = 0.25 / 0.75 * flight;
+    assert!((later.arrival_s - (flight + hover_s)).abs() < 1e-9);
+    let hover_w = w.spec.energy.model.power(0.0, w.spec.uavs[0].payload_kg);
+    assert!(hover_w > 100.0, "{hover_w}");
+    let extra = later.energy_j - now.energy_j;
+    assert!((extra - hover_w * hover_s).abs() < 1e-6 * extra, "{extra}");
+}
+
+#[test]
+fn a_delay_limit_outside_its_range_is_refused_by_name() {
+    for bad in [-0.1, 0.95, f64::NAN] {
+        let mut s = spec(&[[100.0, 100.0, 150.0]]);
+        s.timing.max_delay = bad;
+        let e = World::new(s, flat()).unwrap_err().to_string();
+        assert!(e.contains("timing.max_delay"), "{e}");
+    }
 }

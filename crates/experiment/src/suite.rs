@@ -19,11 +19,15 @@ pub const GENERATED_WINDOWS: usize = 1;
 pub const GENERATED_SIZES: [usize; 3] = [8, 12, 20];
 
 /// A suite's name and what it holds, for `--help` and errors.
-pub const SUITES: [(&str, &str); 6] = [
+pub const SUITES: [(&str, &str); 7] = [
     ("paper", "paper-case1 and paper-case2"),
     (
         "outside",
         "the 4 outside benchmark instances, 5 UAVs (needs ../shared/data/outside)",
+    ),
+    (
+        "outside-delay",
+        "the same with departure delays free (timing.max_delay 0.3: outside-K-delay)",
     ),
     (
         "generated-8",
@@ -60,6 +64,9 @@ pub fn suite(name: &str) -> Option<Vec<String>> {
         "paper" => vec!["paper-case1".into(), "paper-case2".into()],
         "outside" => (0..swarmplan_io::outside::INSTANCES)
             .map(|k| format!("outside-{k}"))
+            .collect(),
+        "outside-delay" => (0..swarmplan_io::outside::INSTANCES)
+            .map(|k| format!("outside-{k}-delay"))
             .collect(),
         "generated" => GENERATED_SIZES.into_iter().flat_map(generated).collect(),
         _ => {

@@ -12,7 +12,9 @@
 //! The fleet's pace comes from the `pace` column (CSV, the same on every row) or property
 //! (GeoJSON, the same on every path); files without it are at pace 1, as exports were
 //! before the pace existed. A pace the scenario's `timing.pace` does not allow is refused:
-//! the times in the file would not be the times the plan is evaluated at.
+//! the times in the file would not be the times the plan is evaluated at. Likewise each
+//! UAV's departure delay comes from the `delay` column (the same on each of its rows) or
+//! property (absent: 0), and one the scenario's `timing.max_delay` does not allow is refused.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -120,7 +122,9 @@ pub fn parse_csv(
         need("alt_amsl_m")?,
     );
     let (cwp, cagl, cpace) = (col("waypoint"), col("alt_agl_m"), col("pace"));
+    let cdelay = col("delay");
     let mut pace: Option<(f64, String)> = None;
+    let mut delays: BTreeMap<usize, (f64, String)> = BTreeMap::new();
     let mut rows: BTreeMap<usize, Vec<(usize, Fix)>> = BTreeMap::new();
     for (line, l) in lines {
         let f: Vec<&str> = l.split(',').map(str::trim).collect();
@@ -158,6 +162,11 @@ pub fn parse_csv(
                 .map_err(|m| line_err(line, format!("pace: {m}")))?;
         }
         let uav = index(cu)?;
+        if let Some(c) = cdelay {
+            let d = number(c)?;
+            one_delay(&mut delays, uav, d, format!("line {line}"))
+                .map_err(|m| line_err(line, format!("delay: {m}")))?;
+        }
         let entry = rows.entry(uav).or_default();
         let k = match cwp {
             Some(c) => index(c)?,
@@ -188,7 +197,8 @@ pub fn parse_csv(
         }
         paths.push(pts.into_iter().map(|(_, f)| f).collect::<Vec<_>>());
     }
-    to_plan(paths, pace.map(|(p, _)| p), name, world, frame)
+    let delays = delays.into_iter().map(|(u, (d, _))| (u, d)).collect();
+    to_plan(paths, pace.map(|(p, _)| p), &delays, name, world, frame)
 }
 
 /// Parses a mission GeoJSON: the `path` features (LineStrings of [lon, lat, alt AMSL] with
@@ -215,6 +225,7 @@ pub fn parse_geojson(
         .ok_or_else(|| invalid("`features` is not an array".into()))?;
     let mut by_uav: BTreeMap<usize, Vec<Fix>> = BTreeMap::new();
     let mut pace: Option<(f64, String)> = None;
+    let mut delays: BTreeMap<usize, f64> = BTreeMap::new();
     for (k, f) in features.iter().enumerate() {
         let props = &f["properties"];
         let is_path = props["kind"] == "path"
@@ -239,6 +250,15 @@ pub fn parse_geojson(
             })?;
             one_pace(&mut pace, p, here.clone())
                 .map_err(|m| invalid(format!("{here}.properties.pace: {m}")))?;
+        }
+        if !props["delay"].is_null() {
+            let d = props["delay"].as_f64().ok_or_else(|| {
+                invalid(format!(
+                    "{here}.properties.delay: expected a number, got {}",
+                    props["delay"]
+                ))
+            })?;
+            delays.insert(uav, d);
         }
         let coords = f["geometry"]["coordinates"]
             .as_array()
@@ -287,7 +307,29 @@ pub fn parse_geojson(
         }
         paths.push(fixes);
     }
-    to_plan(paths, pace.map(|(p, _)| p), name, world, frame)
+    to_plan(paths, pace.map(|(p, _)| p), &delays, name, world, frame)
+}
+
+/// Keeps UAV `uav`'s first delay read and refuses a later one that is not the same bits:
+/// a UAV departs once.
+fn one_delay(
+    delays: &mut BTreeMap<usize, (f64, String)>,
+    uav: usize,
+    d: f64,
+    at: String,
+) -> Result<(), String> {
+    match delays.get(&uav) {
+        None => {
+            delays.insert(uav, (d, at));
+        }
+        Some((q, there)) if q.to_bits() != d.to_bits() => {
+            return Err(format!(
+                "expected uav {uav}'s one departure delay, {q} ({there}), got {d}"
+            ));
+        }
+        Some(_) => {}
+    }
+    Ok(())
 }
 
 /// Keeps the first pace read (with where it was read) and refuses a later one that is not
@@ -309,6 +351,7 @@ fn one_pace(first: &mut Option<(f64, String)>, p: f64, at: String) -> Result<(),
 fn to_plan(
     paths: Vec<Vec<Fix>>,
     pace: Option<f64>,
+    delays: &BTreeMap<usize, f64>,
     name: &str,
     world: &World,
     frame: &LocalFrame,
@@ -370,6 +413,17 @@ fn to_plan(
             })
         })?;
         plan.uavs.push(UavPath { waypoints });
+        let delay = delays.get(&i).copied().unwrap_or(0.0);
+        if !(delay.is_finite() && world.spec.timing.allows_delay(delay)) {
+            return Err(invalid(format!(
+                "uav {i}: departure delay {delay}: scenario `{}` allows timing.max_delay {} (a share of the arrival time in [0, max_delay])",
+                world.spec.name, world.spec.timing.max_delay
+            )));
+        }
+        plan.delays.push(delay);
+    }
+    if swarmplan_core::plan::no_delays(&plan.delays) {
+        plan.delays.clear();
     }
     Ok(plan)
 }

@@ -19,6 +19,12 @@
 //! 20 runs had the whole fleet mid-route, out of range of both ground nodes, while the
 //! channel's range was at its lowest (outside-1: R(t) below 500 m from 42 to 63 s). The
 //! paper cases keep the fixed pace.
+//!
+//! `outside-K-delay` (and `outside-K-uN-delay`) is the same instance with departure delays
+//! free up to [`OUTSIDE_MAX_DELAY`] of the mission (`timing.max_delay`,
+//! [`swarmplan_core::encoding::delayed`]): a UAV may hover at the shared start, above the
+//! ground station, while the others fly out of its sight (docs/results.md, "Departure
+//! delays"). A variant, not the instance itself, so that every result on `outside-K` stands.
 
 use std::path::{Path, PathBuf};
 
@@ -37,6 +43,9 @@ pub const DEFAULT_UAVS: usize = 5;
 
 /// Instances in the shared folder (`outside-0` to `outside-3`).
 pub const INSTANCES: usize = 4;
+
+/// `timing.max_delay` of the `-delay` variants: a UAV may wait up to 30 % of the mission.
+pub const OUTSIDE_MAX_DELAY: f64 = 0.3;
 
 /// An instance file as the outside generator writes it.
 #[derive(Debug, Deserialize)]
@@ -68,10 +77,15 @@ pub enum OutsideError {
     Template(#[from] Box<ScenarioError>),
 }
 
-/// The scenario name `outside-K[-uN]` as (instance file stem, UAVs), or `None`.
+/// The scenario name `outside-K[-uN][-delay]` as (instance file stem, UAVs, delays free),
+/// or `None`.
 #[must_use]
-pub fn parse_name(name: &str) -> Option<(String, usize)> {
-    let rest = name.strip_prefix("outside-")?;
+pub fn parse_name(name: &str) -> Option<(String, usize, bool)> {
+    let (base, delay) = match name.strip_suffix("-delay") {
+        Some(base) => (base, true),
+        None => (name, false),
+    };
+    let rest = base.strip_prefix("outside-")?;
     let (k, uavs) = match rest.split_once("-u") {
         Some((k, n)) => (k, n),
         None => (rest, ""),
@@ -90,7 +104,8 @@ pub fn parse_name(name: &str) -> Option<(String, usize)> {
     } else {
         format!("outside-{k}-u{n}")
     };
-    (canonical == name && (k == "0" || !k.starts_with('0'))).then(|| (format!("outside-{k}"), n))
+    (canonical == base && (k == "0" || !k.starts_with('0')))
+        .then(|| (format!("outside-{k}"), n, delay))
 }
 
 /// The file of instance `stem` in the shared folder.
@@ -104,8 +119,15 @@ pub fn instance_path(stem: &str) -> PathBuf {
 /// The scenario named `name` (`outside-K[-uN]`) from the shared folder, or `None` when the
 /// name is not of that form.
 pub fn load_named(name: &str) -> Option<Result<ScenarioSpec, OutsideError>> {
-    let (stem, uavs) = parse_name(name)?;
-    Some(from_instance(&instance_path(&stem), uavs, name))
+    let (stem, uavs, delay) = parse_name(name)?;
+    Some(
+        from_instance(&instance_path(&stem), uavs, name).map(|mut spec| {
+            if delay {
+                spec.timing.max_delay = OUTSIDE_MAX_DELAY;
+            }
+            spec
+        }),
+    )
 }
 
 /// The scenario of instance file `path` with `uavs` UAVs, named `name`.
@@ -176,8 +198,22 @@ mod tests {
 
     #[test]
     fn names() {
-        assert_eq!(parse_name("outside-0"), Some(("outside-0".into(), 5)));
-        assert_eq!(parse_name("outside-3-u12"), Some(("outside-3".into(), 12)));
+        assert_eq!(
+            parse_name("outside-0"),
+            Some(("outside-0".into(), 5, false))
+        );
+        assert_eq!(
+            parse_name("outside-3-u12"),
+            Some(("outside-3".into(), 12, false))
+        );
+        assert_eq!(
+            parse_name("outside-2-delay"),
+            Some(("outside-2".into(), 5, true))
+        );
+        assert_eq!(
+            parse_name("outside-2-u8-delay"),
+            Some(("outside-2".into(), 8, true))
+        );
         for bad in [
             "outside-",
             "outside-x",
@@ -186,6 +222,9 @@ mod tests {
             "outside-1-u5",
             "outside-1-u05",
             "outside-1-v3",
+            "outside-1-delay-u8",
+            "outside-1-delay-delay",
+            "outside-delay",
             "inside-1",
         ] {
             assert_eq!(parse_name(bad), None, "{bad}");

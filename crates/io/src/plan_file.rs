@@ -17,6 +17,7 @@ use serde::{Deserialize, Serialize};
 use swarmplan_core::plan::{Path as UavPath, Plan};
 use swarmplan_core::timing::TimedPlan;
 use swarmplan_core::world::channel::CHANNEL_HORIZON_S;
+use swarmplan_core::world::spec::MAX_DELAY_LIMIT;
 use swarmplan_core::world::World;
 use thiserror::Error;
 
@@ -49,7 +50,12 @@ pub enum PlanFileError {
 pub struct UavEntry {
     /// [x, y, z above ground] of each waypoint, start and goal included.
     pub waypoints: Vec<[f64; 3]>,
-    /// Time at each waypoint, seconds after departure (written, ignored on input).
+    /// Departure delay, a share of the UAV's arrival time that it hovers at its start
+    /// ([`Plan::delays`]; absent: 0, it leaves at once).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub delay: f64,
+    /// Time at each waypoint, seconds after the mission starts (written, ignored on input);
+    /// the first is the UAV's departure.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub time_s: Vec<f64>,
     /// Speed on the segment leaving each waypoint, m/s (the last repeats the previous).
@@ -61,6 +67,11 @@ pub struct UavEntry {
     /// Height above ground of each waypoint, metres (the z of `waypoints`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub altitude_agl_m: Vec<f64>,
+}
+
+#[allow(clippy::trivially_copy_pass_by_ref, clippy::float_cmp)]
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 /// A plan file.
@@ -229,6 +240,31 @@ pub fn parse_plan(
             }
         }
         plan.uavs.push(UavPath { waypoints });
+        let timing = &world.spec.timing;
+        if !(0.0..=MAX_DELAY_LIMIT).contains(&u.delay) {
+            return Err(invalid(
+                format!("uavs[{i}].delay"),
+                format!(
+                    "expected a share of the arrival time in [0, {MAX_DELAY_LIMIT}] (0: it leaves at once), got {}",
+                    u.delay
+                ),
+            ));
+        }
+        if provenance == Provenance::MustMatch && !timing.allows_delay(u.delay) {
+            return Err(PlanFileError::Provenance {
+                path: origin.to_string(),
+                what: "delay",
+                recorded: format!("uavs[{i}].delay {}", u.delay),
+                current: format!(
+                    "scenario `{}`'s timing.max_delay {}",
+                    world.spec.name, timing.max_delay
+                ),
+            });
+        }
+        plan.delays.push(u.delay);
+    }
+    if swarmplan_core::plan::no_delays(&plan.delays) {
+        plan.delays.clear();
     }
     Ok(plan)
 }
@@ -305,6 +341,7 @@ pub fn plan_file(world: &World, plan: &Plan) -> PlanFile {
         .map(|(p, (tp, fp))| {
             let m = p.waypoints.len();
             UavEntry {
+                delay: tp.delay,
                 waypoints: p.waypoints.iter().map(|w| w.to_array()).collect(),
                 time_s: fp.waypoint_times(m),
                 speed_mps: vec![fp.speed; m],

@@ -365,7 +365,7 @@ fn kml_and_csv_state_their_altitude_reference() {
     assert_eq!(
         lines.next(),
         Some(
-            "uav,waypoint,time_s,lat_deg,lon_deg,alt_amsl_m,alt_agl_m,speed_mps,acceptance_m,pace"
+            "uav,waypoint,time_s,lat_deg,lon_deg,alt_amsl_m,alt_agl_m,speed_mps,acceptance_m,pace,delay"
         )
     );
     let rows = lines.count();
@@ -455,7 +455,9 @@ fn a_paced_plan_is_reimported_at_its_pace_and_a_foreign_pace_is_refused() {
     let text = std::fs::read_to_string(&csv_file).unwrap();
     let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
     let last = lines.len() - 1;
-    lines[last] = format!("{},1.25", lines[last].rsplit_once(',').unwrap().0);
+    // The pace is the second column from the end (the UAV's delay is last).
+    let (head, delay) = lines[last].rsplit_once(',').unwrap();
+    lines[last] = format!("{},1.25,{delay}", head.rsplit_once(',').unwrap().0);
     let e = parse_csv(&lines.join("\n"), "m.csv", &world, &frame())
         .unwrap_err()
         .to_string();
@@ -654,4 +656,89 @@ fn imported_missions_outside_the_model_are_refused_naming_the_waypoint() {
         e.starts_with("m.csv: uav 0 waypoint 1: expected a point in the map box"),
         "{e}"
     );
+}
+
+#[test]
+fn a_delayed_plan_hovers_in_every_export_and_is_reimported_with_its_delays() {
+    let mut loaded = load_spec("tiny").unwrap();
+    loaded.spec.timing.max_delay = 0.4;
+    let world = build_world(&loaded, None).unwrap();
+    let mut plan = planned(&world);
+    plan.delays = vec![0.0, 0.25];
+    let before = assess(&world, &plan, false);
+    let undelayed = assess(
+        &world,
+        &Plan {
+            delays: Vec::new(),
+            ..plan.clone()
+        },
+        false,
+    );
+    assert!(
+        (undelayed.total - before.total).abs() > 1e-3,
+        "the delay must matter here"
+    );
+    let mission = Mission::new(&world, &plan, &frame()).unwrap();
+    let late = &mission.paths[1];
+    assert!(late.depart_s > 0.0 && mission.paths[0].depart_s == 0.0);
+    assert!((late.depart_s - 0.25 * late.points.last().unwrap().time_s).abs() < 1e-9);
+    assert!((late.points[0].time_s - late.depart_s).abs() < 1e-9);
+    let dir = tempfile::tempdir().unwrap();
+    // QGroundControl: the delayed UAV hovers at its start (NAV_LOITER_TIME, its seconds).
+    export_plan(&world, &plan, &frame(), ExportFormat::QgcPlan, dir.path()).unwrap();
+    for (uav, hold) in [(0, None), (1, Some(late.depart_s))] {
+        let text = std::fs::read_to_string(dir.path().join(format!("uav{uav}.plan"))).unwrap();
+        let doc: Value = serde_json::from_str(&text).unwrap();
+        check_qgc_plan_format(&doc, "delayed");
+        let items = doc["mission"]["items"].as_array().unwrap();
+        let cmds: Vec<u64> = items
+            .iter()
+            .map(|i| i["command"].as_u64().unwrap())
+            .collect();
+        match hold {
+            None => assert!(!cmds.contains(&19), "{cmds:?}"),
+            Some(s) => {
+                assert_eq!(&cmds[..3], &[22, 19, 178], "{cmds:?}");
+                assert!((items[1]["params"][0].as_f64().unwrap() - s).abs() < 1e-9);
+                assert_eq!(items[1]["params"][4], items[0]["params"][4]);
+            }
+        }
+    }
+    for format in [ExportFormat::Csv, ExportFormat::GeoJson] {
+        let files = export_plan(&world, &plan, &frame(), format, dir.path()).unwrap();
+        let again = read_exported_plan(&files[0], &world, &frame()).unwrap();
+        let bits = |p: &Plan| p.delays.iter().map(|d| d.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&again), bits(&plan), "{format}");
+        let after = assess(&world, &again, false);
+        assert!((after.total - before.total).abs() < 1e-6, "{format}");
+        // A scenario without delays refuses the file, naming the UAV and the limit.
+        let e = read_exported_plan(&files[0], &tiny(), &frame())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("uav 1") && e.contains("0.25") && e.contains("timing.max_delay 0"),
+            "{format}: {e}"
+        );
+    }
+    // The plan file records each UAV's delay and reads it back.
+    let file = swarmplan_io::plan_file::plan_file(&world, &plan);
+    let text = serde_json::to_string(&file).unwrap();
+    assert!(text.contains("\"delay\":0.25"), "{text}");
+    let read = swarmplan_io::plan_file::parse_plan(
+        &text,
+        "plan.json",
+        &world,
+        swarmplan_io::plan_file::Provenance::MustMatch,
+    )
+    .unwrap();
+    assert_eq!(read, plan);
+    let e = swarmplan_io::plan_file::parse_plan(
+        &text.replace("\"delay\":0.25", "\"delay\":0.95"),
+        "plan.json",
+        &world,
+        swarmplan_io::plan_file::Provenance::AllowOther,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("uavs[1].delay") && e.contains("0.95"), "{e}");
 }

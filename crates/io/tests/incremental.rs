@@ -26,11 +26,12 @@ use swarmplan_io::scenario::{build_world, load_spec};
 
 /// paper-case2 (common arrival), gen-s2-u8-t12-shared with cruise timing, gen-s1-u10-t12,
 /// and paper-case2 and the cruise one again with the fleet's pace free (a change to one
-/// UAV's block can then change everyone's speed).
+/// UAV's block can then change everyone's speed), and with departure delays free (a UAV
+/// that waits hovers at its start: a leading segment of its motion).
 fn worlds() -> &'static [World] {
     static W: OnceLock<Vec<World>> = OnceLock::new();
     W.get_or_init(|| {
-        let load = |name: &str, cruise: bool, free_pace: bool| {
+        let load = |name: &str, cruise: bool, free_pace: bool, max_delay: f64| {
             let mut loaded = load_spec(name).unwrap();
             if cruise {
                 loaded.spec.timing.policy = TimingPolicy::Cruise;
@@ -38,14 +39,17 @@ fn worlds() -> &'static [World] {
             if free_pace {
                 loaded.spec.timing.pace = [0.5, 1.5];
             }
+            loaded.spec.timing.max_delay = max_delay;
             build_world(&loaded, None).unwrap()
         };
         vec![
-            load("paper-case2", false, false),
-            load("gen-s2-u8-t12-shared", true, false),
-            load("gen-s1-u10-t12", false, false),
-            load("paper-case2", false, true),
-            load("gen-s2-u8-t12-shared", true, true),
+            load("paper-case2", false, false, 0.0),
+            load("gen-s2-u8-t12-shared", true, false, 0.0),
+            load("gen-s1-u10-t12", false, false, 0.0),
+            load("paper-case2", false, true, 0.0),
+            load("gen-s2-u8-t12-shared", true, true, 0.0),
+            load("paper-case2", false, true, 0.4),
+            load("gen-s2-u8-t12-shared", true, false, 0.4),
         ]
     })
 }
@@ -67,11 +71,11 @@ fn outcome(problem: &PlanningProblem<'_>, x: &[f64], scratch: &mut Scratch) -> O
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(32))]
+    #![proptest_config(ProptestConfig::with_cases(40))]
 
     #[test]
     fn an_evaluation_after_changes_equals_one_on_fresh_buffers(
-        world_index in 0usize..5,
+        world_index in 0usize..7,
         seed in any::<u64>(),
         changes in prop::collection::vec((0usize..64, 1usize..3, prop::bool::ANY), 1..8),
     ) {
@@ -153,4 +157,35 @@ fn a_change_of_pace_alone_sweeps_no_pair_again() {
     assert_eq!(warm.pairs_swept(), 0);
     assert_ne!(before.0, after.0, "the pace changed the cost");
     assert_eq!(after, outcome(&problem, &x, &mut Scratch::default()));
+}
+
+/// With departure delays free, every UAV block ends with its delay, and a plan drawn from
+/// the initialisation waits: some UAV departs after t = 0 and hovers at its start.
+#[test]
+fn free_delays_add_a_value_per_block_that_the_plan_waits_for() {
+    let paced = PlanningProblem::new(&worlds()[3], EncodingKind::Spherical, InitKind::Line);
+    let delayed = PlanningProblem::new(&worlds()[5], EncodingKind::Spherical, InitKind::Line);
+    assert_eq!(delayed.block_size(), paced.block_size() + 1);
+    let bounds = delayed.bounds();
+    let block = delayed.block_size();
+    for b in 0..delayed.dimension() / block {
+        let last = bounds[(b + 1) * block - 1];
+        assert_eq!((last.lo, last.hi), (0.0, 0.4));
+    }
+    let mut x = vec![0.0; delayed.dimension()];
+    delayed.sample_initial(&mut rng_from_seed(3), &mut x);
+    let plan = delayed.decode(&x);
+    assert_eq!(plan.delays.len(), 5);
+    assert!(plan.delays.iter().all(|d| (0.0..=0.4).contains(d)));
+    assert!(plan.delays.iter().any(|d| *d > 0.0));
+    let timed = swarmplan_core::timing::TimedPlan::new(delayed.world(), &plan);
+    let (u, tp) = timed
+        .paths
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1.depart.total_cmp(&b.1.depart))
+        .unwrap();
+    assert!(tp.depart > 0.0);
+    let start = tp.abs[0];
+    assert_eq!(tp.position_at_time(0.5 * tp.depart), start, "uav {u}");
 }

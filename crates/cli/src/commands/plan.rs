@@ -408,6 +408,20 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
                 result.plan.pace, timing.pace[0], timing.pace[1]
             );
         }
+        if timing.delay_is_free() {
+            let timed = swarmplan_core::timing::TimedPlan::flown(&world, &result.plan);
+            let departures: Vec<String> = timed
+                .paths
+                .iter()
+                .enumerate()
+                .map(|(u, p)| format!("uav {u} {:.1} s", p.depart))
+                .collect();
+            println!(
+                "departures (each UAV hovers at its start until then; delays up to {:.0} % of the arrival time): {}",
+                100.0 * timing.max_delay,
+                departures.join(", ")
+            );
+        }
         println!(
             "wrote {}, {}, {} and {}",
             plan_path.display(),

@@ -3,7 +3,7 @@
 //!
 //! Eq. 5 (per UAV): J_energy = L + alpha sum |dz| + beta sum |d heading| (metres, metres,
 //! radians). Physical: E = P(v) L / v + m g (metres climbed) + turn energy x (radians
-//! turned), with P the rotary-wing power of [`crate::world::energy::RotaryWing`]. Feasible iff
+//! turned) + P(0) x (departure delay, hovering at the start), with P the rotary-wing power of [`crate::world::energy::RotaryWing`]. Feasible iff
 //! E <= (1 - reserve) x battery.
 
 use super::kinematics::Kinematics;
@@ -35,7 +35,13 @@ pub fn physical_energy(world: &World, uav: usize, tp: &TimedPath, k: &Kinematics
     } else {
         f64::INFINITY
     };
-    cruise + m.mass(payload) * G * k.climb_up + m.turn_energy_per_rad * k.turn_abs
+    let moving = cruise + m.mass(payload) * G * k.climb_up + m.turn_energy_per_rad * k.turn_abs;
+    if tp.depart > 0.0 {
+        // Hovering at the start until departure.
+        moving + m.power(0.0, payload) * tp.depart
+    } else {
+        moving
+    }
 }
 
 /// Usable energy of UAV `uav`, joules.

@@ -16,6 +16,8 @@
 //! Simpson's rule instead (their integrand is below 1/2500 per second and smooth). A UAV is exempt from
 //! take-off until it first leaves the start zone and from landing once it last enters the
 //! goal zone; a path that comes back into the start zone later is checked there (stricter).
+//! A UAV with a departure delay hovers at its start until it leaves (a leading segment of
+//! zero velocity), inside its start zone.
 
 use glam::DVec3;
 
@@ -89,15 +91,29 @@ impl TimeUnit {
         }
     }
 
-    /// Metres per unit of `p`'s flight: its length under common arrival, else its speed;
-    /// 0 for a UAV that does not move.
+    /// Metres per unit of `p`'s flight: its length over the share of T it flies under
+    /// common arrival, else its speed; 0 for a UAV that does not move.
     fn speed(self, p: &TimedPath) -> f64 {
         if p.speed <= 0.0 || self.seconds.is_nan() || self.seconds <= 0.0 {
             0.0
         } else if self.common_arrival {
-            p.length
+            if p.delay > 0.0 {
+                p.length / (1.0 - p.delay)
+            } else {
+                p.length
+            }
         } else {
             p.speed
+        }
+    }
+
+    /// When `p` departs, in units: its delay share under common arrival (the share of T
+    /// it waits), else its departure in seconds.
+    fn depart(self, p: &TimedPath) -> f64 {
+        if self.common_arrival {
+            p.delay
+        } else {
+            p.depart
         }
     }
 }
@@ -117,15 +133,24 @@ struct Motion {
 }
 
 impl Motion {
-    fn fill(&mut self, p: &TimedPath, unit_speed: f64, goal: DVec3, zone: f64) {
+    /// `depart` (in units, 0 for none) makes the UAV hover at its start until then: a
+    /// leading segment of zero velocity.
+    fn fill(&mut self, p: &TimedPath, unit_speed: f64, depart: f64, goal: DVec3, zone: f64) {
         self.abs.clear();
-        self.abs.extend_from_slice(&p.abs);
         self.times.clear();
+        let waits = depart > 0.0 && unit_speed > 0.0;
+        if waits {
+            self.abs.push(p.abs[0]);
+            self.times.push(0.0);
+        }
+        self.abs.extend_from_slice(&p.abs);
         self.times.extend(p.cum.iter().map(|&c| {
-            if unit_speed > 0.0 {
-                c / unit_speed
-            } else {
+            if unit_speed <= 0.0 {
                 0.0
+            } else if waits {
+                depart + c / unit_speed
+            } else {
+                c / unit_speed
             }
         }));
         self.ends.clear();
@@ -252,7 +277,7 @@ pub fn proximity(
     let unit = TimeUnit::of(world, timed);
     s.motion.resize_with(n, Motion::default);
     for (m, tp) in s.motion.iter_mut().zip(&timed.paths) {
-        m.fill(tp, unit.speed(tp), goal, zone);
+        m.fill(tp, unit.speed(tp), unit.depart(tp), goal, zone);
     }
     let settings = [eps, sep, zone, goal.x, goal.y, goal.z].map(f64::to_bits);
     let memo_valid = s.settings == Some(settings) && s.previous.len() == n;

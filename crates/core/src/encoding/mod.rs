@@ -8,6 +8,7 @@
 pub mod angle;
 pub mod cartesian;
 pub mod corridor;
+pub mod delayed;
 pub mod init;
 pub mod paced;
 pub mod spherical;
@@ -124,6 +125,7 @@ impl Frame {
     /// Resizes `plan` to the fleet with n + 2 waypoints each, start and goal set, pace 1.
     pub fn prepare(&self, plan: &mut Plan) {
         plan.pace = 1.0;
+        plan.delays.clear();
         plan.uavs.resize_with(self.starts.len(), Default::default);
         for (path, s) in plan.uavs.iter_mut().zip(&self.starts) {
             path.waypoints.resize(self.n + 2, DVec3::ZERO);

@@ -373,6 +373,14 @@ pub struct TimingSpec {
     /// default): no choice, the paper's layout (and not written out).
     #[serde(skip_serializing_if = "is_fixed_unit_pace")]
     pub pace: [f64; 2],
+    /// Largest departure delay, as a share of the mission: UAV i may wait (hovering at its
+    /// start) for delta_i x its arrival time before it leaves, with delta_i in
+    /// [0, max_delay] chosen by the planner (one more variable per UAV block). Why: a UAV
+    /// that waits above the ground station can relay for the others while they fly out of
+    /// its sight (docs/model.md, "Departure delays"). 0 (the default): everyone leaves at
+    /// t = 0, the paper's layout (and not written out).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub max_delay: f64,
 }
 
 impl Default for TimingSpec {
@@ -382,8 +390,14 @@ impl Default for TimingSpec {
             separation: 10.0,
             zone_radius: 30.0,
             pace: [1.0, 1.0],
+            max_delay: 0.0,
         }
     }
+}
+
+#[allow(clippy::trivially_copy_pass_by_ref, clippy::float_cmp)]
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 #[allow(clippy::trivially_copy_pass_by_ref, clippy::float_cmp)]
@@ -404,7 +418,22 @@ impl TimingSpec {
     pub fn allows_pace(&self, p: f64) -> bool {
         (self.pace[0]..=self.pace[1]).contains(&p)
     }
+
+    /// Whether departure delays are decision variables (`max_delay > 0`).
+    #[must_use]
+    pub fn delay_is_free(&self) -> bool {
+        self.max_delay > 0.0
+    }
+
+    /// Whether a plan may delay a departure by share `d` here (in [0, max_delay]).
+    #[must_use]
+    pub fn allows_delay(&self, d: f64) -> bool {
+        (0.0..=self.max_delay).contains(&d)
+    }
 }
+
+/// The largest `timing.max_delay`: every UAV keeps at least a tenth of the mission to fly.
+pub const MAX_DELAY_LIMIT: f64 = 0.9;
 
 /// Decision-variable layout and seeds.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

@@ -285,6 +285,16 @@ impl ScenarioSpec {
                 format!("{:?}", t.pace),
             ));
         }
+        if !(0.0..=super::spec::MAX_DELAY_LIMIT).contains(&t.max_delay) {
+            return Err(err(
+                "timing.max_delay",
+                format!(
+                    "a share of the mission in [0, {}] (0: every UAV leaves at t = 0)",
+                    super::spec::MAX_DELAY_LIMIT
+                ),
+                t.max_delay,
+            ));
+        }
         if self.planning.waypoints == 0 || self.planning.waypoints > 1000 {
             return Err(err(
                 "planning.waypoints",

@@ -1,6 +1,7 @@
 //! One GeoJSON FeatureCollection (RFC 7946) for the fleet: a LineString per UAV with
 //! positions [longitude, latitude, altitude AMSL] and its schedule in the properties
-//! (`time_s`, `alt_agl_m`, `speed_mps`), a Point for each start and for the goal, and a
+//! (`time_s`, `alt_agl_m`, `speed_mps`; `delay` and `depart_s`, its departure delay as a
+//! share of its arrival and in seconds, before which it hovers at its start), a Point for each start and for the goal, and a
 //! Polygon per threat (its circle, counter-clockwise as RFC 7946 asks of exterior rings).
 //!
 //! RFC 7946 calls the third coordinate a height above the ellipsoid; these files carry the
@@ -35,6 +36,8 @@ pub(crate) fn geojson(m: &Mission) -> String {
                 "uav": p.uav,
                 "speed_mps": p.speed_mps,
                 "pace": m.pace,
+                "delay": p.delay,
+                "depart_s": p.depart_s,
                 "length_m": p.length_m,
                 "arrival_s": p.points[p.points.len() - 1].time_s,
                 "acceptance_m": p.points.iter().map(|pt| pt.acceptance_m).collect::<Vec<_>>(),

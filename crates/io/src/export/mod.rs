@@ -168,6 +168,11 @@ pub struct MissionPath {
     pub points: Vec<MissionPoint>,
     /// Constant planned speed, m/s.
     pub speed_mps: f64,
+    /// Departure delay, a share of the arrival time ([`Plan::delays`]), which the
+    /// re-importable formats record.
+    pub delay: f64,
+    /// When it leaves its start, seconds (it hovers there until then; 0: at once).
+    pub depart_s: f64,
     /// 3-D length with absolute altitudes, metres.
     pub length_m: f64,
     /// Drone size (hard zone margin of threats), metres.
@@ -285,6 +290,8 @@ impl Mission {
                 uav: i,
                 points,
                 speed_mps: fp.speed,
+                delay: fp.delay,
+                depart_s: fp.depart,
                 length_m: fp.length,
                 size_m: world.spec.uavs[i].size,
                 turn_radius_m: if arcs {

@@ -4,7 +4,9 @@
 //! geoFence, rallyPoints) and the older `QGC WPL 110` text format (tab-separated; item 0 is
 //! the home position).
 //!
-//! Items: NAV_TAKEOFF (22) at the start up to the start's altitude, DO_CHANGE_SPEED (178,
+//! Items: NAV_TAKEOFF (22) at the start up to the start's altitude, NAV_LOITER_TIME (19) at
+//! the start for the UAV's departure delay when it has one (param 1 the seconds it hovers
+//! there before it leaves, the time the plan was assessed with), DO_CHANGE_SPEED (178,
 //! ground speed) once, because a swarmplan path has one constant planned speed,
 //! NAV_WAYPOINT (16) for every path point (start and goal included), NAV_LAND (21) at the
 //! goal. A waypoint's param 2, the acceptance radius, is the tangent length R tan(theta/2)
@@ -20,6 +22,7 @@ use serde_json::{json, Value};
 use super::{num, Mission, MissionPath, ALTITUDE_REFERENCE};
 
 const MAV_CMD_NAV_WAYPOINT: u16 = 16;
+const MAV_CMD_NAV_LOITER_TIME: u16 = 19;
 const MAV_CMD_NAV_LAND: u16 = 21;
 const MAV_CMD_NAV_TAKEOFF: u16 = 22;
 const MAV_CMD_DO_CHANGE_SPEED: u16 = 178;
@@ -65,6 +68,16 @@ pub(crate) fn items(p: &MissionPath) -> Vec<Item> {
         first.geo.lon_deg,
         first.geo.alt_m,
     ));
+    if p.depart_s > 0.0 {
+        let mut hold = nav(
+            MAV_CMD_NAV_LOITER_TIME,
+            first.geo.lat_deg,
+            first.geo.lon_deg,
+            first.geo.alt_m,
+        );
+        hold.params[0] = p.depart_s;
+        out.push(hold);
+    }
     out.push(Item {
         command: MAV_CMD_DO_CHANGE_SPEED,
         frame: MAV_FRAME_MISSION,
