@@ -10,9 +10,7 @@
 //! `max_delay = 0` the problem is not wrapped: the paper's layout and every result on it
 //! are unchanged.
 
-use std::cell::RefCell;
-
-use super::PathEncoding;
+use super::{per_block, PathEncoding};
 use crate::plan::Plan;
 use crate::problem::Bound;
 
@@ -26,10 +24,6 @@ pub struct Delayed {
     bounds: Vec<Bound>,
 }
 
-thread_local! {
-    static INNER: RefCell<Vec<f64>> = const { RefCell::new(Vec::new()) };
-}
-
 impl Delayed {
     /// Wraps `inner` (blocks of `block` values for `uavs` UAVs) with a delay in
     /// [0, `max_delay`] per UAV.
@@ -37,11 +31,7 @@ impl Delayed {
     pub fn new(inner: Box<dyn PathEncoding>, uavs: usize, max_delay: f64) -> Self {
         let block = inner.bounds().len() / uavs.max(1);
         let delay = Bound::new(0.0, max_delay);
-        let mut bounds = Vec::with_capacity(uavs * (block + 1));
-        for b in inner.bounds().chunks(block.max(1)) {
-            bounds.extend_from_slice(b);
-            bounds.push(delay);
-        }
+        let bounds = per_block::bounds_with_extra(inner.bounds(), block, delay);
         Self {
             inner,
             block,
@@ -58,30 +48,16 @@ impl PathEncoding for Delayed {
     }
 
     fn decode_into(&self, x: &[f64], plan: &mut Plan) {
-        INNER.with(|buf| {
-            let mut buf = buf.borrow_mut();
-            buf.clear();
-            for b in x.chunks(self.block + 1) {
-                buf.extend_from_slice(&b[..self.block]);
-            }
-            self.inner.decode_into(&buf, plan);
-        });
+        per_block::decode_inner(self.inner.as_ref(), self.block, x, plan);
         plan.delays.clear();
         plan.delays
             .extend(x.chunks(self.block + 1).map(|b| b[self.block]));
     }
 
     fn encode_into(&self, plan: &Plan, out: &mut [f64]) {
-        let mut inner = vec![0.0; self.block * self.uavs];
-        self.inner.encode_into(plan, &mut inner);
-        for (u, (o, i)) in out
-            .chunks_mut(self.block + 1)
-            .zip(inner.chunks(self.block.max(1)))
-            .enumerate()
-        {
-            o[..self.block].copy_from_slice(i);
-            o[self.block] = self.delay.project(plan.delay(u));
-        }
+        let delay = |u: usize| self.delay.project(plan.delay(u));
+        let inner = self.inner.as_ref();
+        per_block::encode_with_extra(inner, self.block, self.uavs, plan, out, delay);
     }
 }
 

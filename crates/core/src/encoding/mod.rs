@@ -11,6 +11,7 @@ pub mod corridor;
 pub mod delayed;
 pub mod init;
 pub mod paced;
+mod per_block;
 pub mod spherical;
 
 pub use init::InitKind;

@@ -10,9 +10,7 @@
 //! mean lets each UAV's search move the fleet's pace by its share. With a closed range the
 //! problem is not wrapped, so the paper's layout and every result on it are unchanged.
 
-use std::cell::RefCell;
-
-use super::PathEncoding;
+use super::{per_block, PathEncoding};
 use crate::plan::Plan;
 use crate::problem::Bound;
 
@@ -26,21 +24,13 @@ pub struct Paced {
     bounds: Vec<Bound>,
 }
 
-thread_local! {
-    static INNER: RefCell<Vec<f64>> = const { RefCell::new(Vec::new()) };
-}
-
 impl Paced {
     /// Wraps `inner` (blocks of `block` values for `uavs` UAVs) with a pace in `range`.
     #[must_use]
     pub fn new(inner: Box<dyn PathEncoding>, uavs: usize, range: [f64; 2]) -> Self {
         let block = inner.bounds().len() / uavs.max(1);
         let pace = Bound::new(range[0], range[1]);
-        let mut bounds = Vec::with_capacity(uavs * (block + 1));
-        for b in inner.bounds().chunks(block.max(1)) {
-            bounds.extend_from_slice(b);
-            bounds.push(pace);
-        }
+        let bounds = per_block::bounds_with_extra(inner.bounds(), block, pace);
         Self {
             inner,
             block,
@@ -70,28 +60,14 @@ impl PathEncoding for Paced {
     }
 
     fn decode_into(&self, x: &[f64], plan: &mut Plan) {
-        INNER.with(|buf| {
-            let mut buf = buf.borrow_mut();
-            buf.clear();
-            for b in x.chunks(self.block + 1) {
-                buf.extend_from_slice(&b[..self.block]);
-            }
-            self.inner.decode_into(&buf, plan);
-        });
+        per_block::decode_inner(self.inner.as_ref(), self.block, x, plan);
         plan.pace = self.pace_of(x);
     }
 
     fn encode_into(&self, plan: &Plan, out: &mut [f64]) {
-        let mut inner = vec![0.0; self.block * self.uavs];
-        self.inner.encode_into(plan, &mut inner);
         let pace = self.pace.project(plan.pace);
-        for (o, i) in out
-            .chunks_mut(self.block + 1)
-            .zip(inner.chunks(self.block.max(1)))
-        {
-            o[..self.block].copy_from_slice(i);
-            o[self.block] = pace;
-        }
+        let inner = self.inner.as_ref();
+        per_block::encode_with_extra(inner, self.block, self.uavs, plan, out, |_| pace);
     }
 }
 

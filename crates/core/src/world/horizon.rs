@@ -77,26 +77,33 @@ impl Horizon {
     /// Whether `p` (absolute altitude) sees the antenna over the terrain.
     #[must_use]
     pub fn visible(&self, p: DVec3) -> bool {
-        let dx = p.x - self.origin.x;
-        let dy = p.y - self.origin.y;
-        let d = (dx * dx + dy * dy).sqrt();
-        // Samples strictly nearer than p: k * step < d.
-        let k = ceil_index(d / self.step).saturating_sub(1);
-        if k == 0 {
+        let Some((slope, bin, k)) = self.entry_of(p) else {
             return true;
-        }
-        let k = k.min(self.steps);
-        let b =
-            ((diamond_angle(dx, dy) * 0.25 * HORIZON_BINS as f64) as usize).min(HORIZON_BINS - 1);
-        let slope = (p.z - self.origin.z) / d;
-        let (low, high) = self.coarse[b * self.blocks + (k - 1) / BLOCK];
+        };
+        let (low, high) = self.coarse[bin * self.blocks + (k - 1) / BLOCK];
         if slope > f64::from(high) {
             return true;
         }
         if slope <= f64::from(low) {
             return false;
         }
-        slope > f64::from(self.table[b * self.steps + k - 1])
+        slope > f64::from(self.table[bin * self.steps + k - 1])
+    }
+
+    /// `p`'s slope from the antenna, its bin and the number k >= 1 of samples nearer than
+    /// it (its entry is the bin's k-th); `None` when no sample is nearer.
+    fn entry_of(&self, p: DVec3) -> Option<(f64, usize, usize)> {
+        let dx = p.x - self.origin.x;
+        let dy = p.y - self.origin.y;
+        let d = (dx * dx + dy * dy).sqrt();
+        // Samples strictly nearer than p: k * step < d.
+        let k = ceil_index(d / self.step).saturating_sub(1);
+        if k == 0 {
+            return None;
+        }
+        let bin =
+            ((diamond_angle(dx, dy) * 0.25 * HORIZON_BINS as f64) as usize).min(HORIZON_BINS - 1);
+        Some(((p.z - self.origin.z) / d, bin, k.min(self.steps)))
     }
 }
 
@@ -162,16 +169,8 @@ mod tests {
 
     /// The full table's answer alone, without the coarse bounds.
     fn visible_by_full_table(hz: &Horizon, p: DVec3) -> bool {
-        let (dx, dy) = (p.x - hz.origin.x, p.y - hz.origin.y);
-        let d = (dx * dx + dy * dy).sqrt();
-        let k = ceil_index(d / hz.step).saturating_sub(1);
-        if k == 0 {
-            return true;
-        }
-        let k = k.min(hz.steps);
-        let b =
-            ((diamond_angle(dx, dy) * 0.25 * HORIZON_BINS as f64) as usize).min(HORIZON_BINS - 1);
-        (p.z - hz.origin.z) / d > f64::from(hz.table[b * hz.steps + k - 1])
+        hz.entry_of(p)
+            .is_none_or(|(slope, b, k)| slope > f64::from(hz.table[b * hz.steps + k - 1]))
     }
 
     #[test]
@@ -192,10 +191,10 @@ mod tests {
             for r in 0..260 {
                 let d = r as f64 + 0.5;
                 let (x, y) = (o.x + d * ang.cos(), o.y + d * ang.sin());
-                let (dx, dy) = (x - o.x, y - o.y);
-                let k = ceil_index(d / hz.step).saturating_sub(1).clamp(1, hz.steps);
-                let b = ((diamond_angle(dx, dy) * 0.25 * HORIZON_BINS as f64) as usize)
-                    .min(HORIZON_BINS - 1);
+                // The bin and sample count depend on (x, y) alone.
+                let Some((_, b, k)) = hz.entry_of(DVec3::new(x, y, o.z)) else {
+                    continue;
+                };
                 let entry = f64::from(hz.table[b * hz.steps + k - 1]);
                 for dz in [-30.0, -1e-9, 0.0, 1e-9, 30.0] {
                     let p = DVec3::new(x, y, o.z + (entry + dz / d) * d);
