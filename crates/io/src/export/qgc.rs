@@ -62,19 +62,17 @@ pub(crate) fn items(p: &MissionPath) -> Vec<Item> {
         params: [0.0, 0.0, 0.0, f64::NAN, lat, lon, alt],
     };
     let mut out = Vec::with_capacity(p.points.len() + 3);
-    out.push(nav(
-        MAV_CMD_NAV_TAKEOFF,
-        first.geo.lat_deg,
-        first.geo.lon_deg,
-        first.geo.alt_m,
-    ));
-    if p.depart_s > 0.0 {
-        let mut hold = nav(
-            MAV_CMD_NAV_LOITER_TIME,
+    let at_start = |command: u16| {
+        nav(
+            command,
             first.geo.lat_deg,
             first.geo.lon_deg,
             first.geo.alt_m,
-        );
+        )
+    };
+    out.push(at_start(MAV_CMD_NAV_TAKEOFF));
+    if p.depart_s > 0.0 {
+        let mut hold = at_start(MAV_CMD_NAV_LOITER_TIME);
         hold.params[0] = p.depart_s;
         out.push(hold);
     }
