@@ -28,7 +28,7 @@
 use glam::DVec3;
 
 use crate::plan::{Path, Plan};
-use crate::world::spec::TimingPolicy;
+use crate::world::spec::{TimingPolicy, MAX_DELAY_LIMIT};
 use crate::world::World;
 
 /// One UAV's path with absolute altitudes, arc lengths and speed.
@@ -247,7 +247,7 @@ impl TimedPlan {
             tp.fill_geometry(world, path);
             tp.flown.clear();
             tp.tangents.clear();
-            tp.delay = plan.delay(u);
+            tp.delay = delay_share(plan.delay(u));
         }
         self.schedule(world);
     }
@@ -269,6 +269,7 @@ impl TimedPlan {
         self.flown_from.resize_with(n, FlownSource::default);
         let sources = self.paths.iter_mut().zip(&mut self.flown_from);
         for (u, ((tp, source), wp)) in sources.zip(&waypoints.paths).enumerate() {
+            tp.delay = wp.delay;
             let radius = world.spec.uavs[u].turn_radius;
             if !tp.abs.is_empty() && source.is(radius, &wp.abs) {
                 continue;
@@ -282,9 +283,6 @@ impl TimedPlan {
             );
             tp.fill_lengths();
             source.set(radius, &wp.abs);
-        }
-        for (tp, wp) in self.paths.iter_mut().zip(&waypoints.paths) {
-            tp.delay = wp.delay;
         }
         self.schedule(world);
     }
@@ -357,6 +355,17 @@ impl TimedPlan {
             *h = k;
             *o = p;
         }
+    }
+}
+
+/// A plan's delay as the schedule takes it: in [0, [`MAX_DELAY_LIMIT`]], 0 for a NaN or a
+/// negative one. Plan files and imports refuse such delays; this keeps a plan built in code
+/// (or a decision vector outside its bounds) timed, instead of a UAV that never leaves.
+fn delay_share(d: f64) -> f64 {
+    if d > 0.0 {
+        d.min(MAX_DELAY_LIMIT)
+    } else {
+        0.0
     }
 }
 

@@ -737,3 +737,40 @@ fn a_delay_limit_outside_its_range_is_refused_by_name() {
         assert!(e.contains("timing.max_delay"), "{e}");
     }
 }
+
+/// Delays a plan built in code may hold (beyond the range, 1, negative, NaN, infinite) are
+/// timed as the nearest admissible share: every UAV departs, arrives at a finite time, and
+/// the plan is assessed without a panic.
+#[test]
+fn out_of_range_delays_are_timed_as_the_nearest_admissible_share() {
+    use swarmplan_core::timing::TimedPlan;
+    let starts = [[100.0, 100.0, 150.0], [100.0, 100.0, 150.0]];
+    let w = World::new(spec(&starts), flat()).unwrap();
+    let line = path(&[
+        [100.0, 100.0, 150.0],
+        [500.0, 300.0, 150.0],
+        [900.0, 900.0, 150.0],
+    ]);
+    for (d, expected) in [
+        (1.0, 0.9),
+        (5.0, 0.9),
+        (f64::INFINITY, 0.9),
+        (-0.5, 0.0),
+        (f64::NAN, 0.0),
+    ] {
+        let plan = Plan {
+            uavs: vec![line.clone(), line.clone()],
+            delays: vec![0.1, d],
+            ..Plan::default()
+        };
+        let timed = TimedPlan::new(&w, &plan);
+        let p = &timed.paths[1];
+        assert_eq!(p.delay, expected, "{d}");
+        assert!(
+            p.arrival.is_finite() && p.depart.is_finite() && p.depart < p.arrival,
+            "{d}"
+        );
+        let a = assess(&w, &plan, true);
+        assert!(a.total.is_finite(), "{d}: {}", a.total);
+    }
+}

@@ -124,7 +124,7 @@ pub fn parse_csv(
     let (cwp, cagl, cpace) = (col("waypoint"), col("alt_agl_m"), col("pace"));
     let cdelay = col("delay");
     let mut pace: Option<(f64, String)> = None;
-    let mut delays: BTreeMap<usize, (f64, String)> = BTreeMap::new();
+    let mut delays: BTreeMap<usize, Option<(f64, String)>> = BTreeMap::new();
     let mut rows: BTreeMap<usize, Vec<(usize, Fix)>> = BTreeMap::new();
     for (line, l) in lines {
         let f: Vec<&str> = l.split(',').map(str::trim).collect();
@@ -158,14 +158,20 @@ pub fn parse_csv(
         };
         if let Some(c) = cpace {
             let p = number(c)?;
-            one_pace(&mut pace, p, format!("line {line}"))
+            one_value(&mut pace, p, format!("line {line}"), "the fleet's one pace")
                 .map_err(|m| line_err(line, format!("pace: {m}")))?;
         }
         let uav = index(cu)?;
         if let Some(c) = cdelay {
             let d = number(c)?;
-            one_delay(&mut delays, uav, d, format!("line {line}"))
-                .map_err(|m| line_err(line, format!("delay: {m}")))?;
+            let what = format!("uav {uav}'s one departure delay");
+            one_value(
+                delays.entry(uav).or_default(),
+                d,
+                format!("line {line}"),
+                &what,
+            )
+            .map_err(|m| line_err(line, format!("delay: {m}")))?;
         }
         let entry = rows.entry(uav).or_default();
         let k = match cwp {
@@ -197,7 +203,10 @@ pub fn parse_csv(
         }
         paths.push(pts.into_iter().map(|(_, f)| f).collect::<Vec<_>>());
     }
-    let delays = delays.into_iter().map(|(u, (d, _))| (u, d)).collect();
+    let delays = delays
+        .into_iter()
+        .filter_map(|(u, d)| Some((u, d?.0)))
+        .collect();
     to_plan(paths, pace.map(|(p, _)| p), &delays, name, world, frame)
 }
 
@@ -248,7 +257,7 @@ pub fn parse_geojson(
                     props["pace"]
                 ))
             })?;
-            one_pace(&mut pace, p, here.clone())
+            one_value(&mut pace, p, here.clone(), "the fleet's one pace")
                 .map_err(|m| invalid(format!("{here}.properties.pace: {m}")))?;
         }
         if !props["delay"].is_null() {
@@ -310,37 +319,18 @@ pub fn parse_geojson(
     to_plan(paths, pace.map(|(p, _)| p), &delays, name, world, frame)
 }
 
-/// Keeps UAV `uav`'s first delay read and refuses a later one that is not the same bits:
-/// a UAV departs once.
-fn one_delay(
-    delays: &mut BTreeMap<usize, (f64, String)>,
-    uav: usize,
-    d: f64,
+/// Keeps the first value read (with where it was read) and refuses a later one that is
+/// not the same bits: a fleet flies at one pace, a UAV departs once (`what` names it).
+fn one_value(
+    first: &mut Option<(f64, String)>,
+    v: f64,
     at: String,
+    what: &str,
 ) -> Result<(), String> {
-    match delays.get(&uav) {
-        None => {
-            delays.insert(uav, (d, at));
-        }
-        Some((q, there)) if q.to_bits() != d.to_bits() => {
-            return Err(format!(
-                "expected uav {uav}'s one departure delay, {q} ({there}), got {d}"
-            ));
-        }
-        Some(_) => {}
-    }
-    Ok(())
-}
-
-/// Keeps the first pace read (with where it was read) and refuses a later one that is not
-/// the same bits: a fleet flies at one pace.
-fn one_pace(first: &mut Option<(f64, String)>, p: f64, at: String) -> Result<(), String> {
     match first {
-        None => *first = Some((p, at)),
-        Some((q, there)) if q.to_bits() != p.to_bits() => {
-            return Err(format!(
-                "expected the fleet's one pace, {q} ({there}), got {p}"
-            ));
+        None => *first = Some((v, at)),
+        Some((q, there)) if q.to_bits() != v.to_bits() => {
+            return Err(format!("expected {what}, {q} ({there}), got {v}"));
         }
         Some(_) => {}
     }

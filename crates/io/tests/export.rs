@@ -720,6 +720,20 @@ fn a_delayed_plan_hovers_in_every_export_and_is_reimported_with_its_delays() {
             "{format}: {e}"
         );
     }
+    // One UAV, one departure: a row that disagrees is refused at the row.
+    let text = std::fs::read_to_string(dir.path().join("mission.csv")).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let last = lines.len() - 1;
+    lines[last] = format!("{},0.125", lines[last].rsplit_once(',').unwrap().0);
+    let e = swarmplan_io::import::parse_csv(&lines.join("\n"), "m.csv", &world, &frame())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains(&format!("line {}", last + 1))
+            && e.contains("uav 1's one departure delay")
+            && e.contains("0.125"),
+        "{e}"
+    );
     // The plan file records each UAV's delay and reads it back.
     let file = swarmplan_io::plan_file::plan_file(&world, &plan);
     let text = serde_json::to_string(&file).unwrap();

@@ -3,8 +3,8 @@
 //!
 //! Eq. 5 (per UAV): J_energy = L + alpha sum |dz| + beta sum |d heading| (metres, metres,
 //! radians). Physical: E = P(v) L / v + m g (metres climbed) + turn energy x (radians
-//! turned) + P(0) x (departure delay, hovering at the start), with P the rotary-wing power of [`crate::world::energy::RotaryWing`]. Feasible iff
-//! E <= (1 - reserve) x battery.
+//! turned) + P(0) x (departure delay, hovering at the start), with P the rotary-wing power
+//! of [`crate::world::energy::RotaryWing`]. Feasible iff E <= (1 - reserve) x battery.
 
 use super::kinematics::Kinematics;
 use crate::feasibility::{At, ViolationKind, ViolationSink};
