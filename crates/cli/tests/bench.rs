@@ -506,3 +506,46 @@ fn resume_alone_reads_the_experiment_from_the_folder() {
     );
     assert_eq!(lines(&runs).len(), 18);
 }
+
+#[test]
+fn records_say_when_the_best_plan_first_became_feasible() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("anytime");
+    Command::cargo_bin("swarmplan")
+        .unwrap()
+        .args(["bench", "--scenarios", "tiny", "--methods", "swarmplan"])
+        .args(["--runs", "3", "--evaluations", "3000", "--seed", "1"])
+        .arg("--out")
+        .arg(&out)
+        .assert()
+        .success();
+    let records = lines(&out.join("runs.jsonl"));
+    let feasible: Vec<&serde_json::Value> =
+        records.iter().filter(|r| r["feasible"] == true).collect();
+    assert!(!feasible.is_empty(), "no feasible run on tiny");
+    for r in feasible {
+        let first = r["first_feasible_evaluations"].as_u64().unwrap();
+        assert!(first <= r["evaluations"].as_u64().unwrap(), "{r}");
+        // It is a point of the convergence record, where the best plan was feasible.
+        let at = r["convergence_evaluations"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .position(|e| e.as_u64() == Some(first));
+        assert!(at.is_some(), "{r}");
+    }
+    let md = std::fs::read_to_string(out.join("summary.md")).unwrap();
+    assert!(
+        md.contains("median evaluations to the first feasible plan"),
+        "{md}"
+    );
+    let csv = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = header
+        .iter()
+        .position(|h| *h == "median_first_feasible_evaluations")
+        .unwrap();
+    let row: Vec<&str> = csv.lines().nth(1).unwrap().split(',').collect();
+    let median: f64 = row[col].parse().unwrap();
+    assert!(median > 0.0 && median <= 3000.0, "{median}");
+}

@@ -57,6 +57,11 @@ pub struct RunRecord {
     /// evaluations.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub convergence_evaluations: Vec<u64>,
+    /// Evaluations spent when the best plan first became feasible (none if it never did,
+    /// and in records written before it existed): where an anytime run
+    /// (`plan --until-feasible`) would have stopped.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub first_feasible_evaluations: Option<u64>,
 }
 
 impl RunRecord {
@@ -124,6 +129,12 @@ impl RunRecord {
                 .map(|r| finite(r.best_cost / n))
                 .collect(),
             convergence_evaluations: result.outcome.trace.iter().map(|r| r.evaluations).collect(),
+            first_feasible_evaluations: result
+                .outcome
+                .trace
+                .iter()
+                .find(|r| r.best_violation == 0.0)
+                .map(|r| r.evaluations),
         }
     }
 }

@@ -49,6 +49,10 @@ pub struct GroupSummary {
     /// Cost per UAV over feasible runs only.
     pub cost_feasible: Option<Summary>,
     pub mean_evaluations: f64,
+    /// Median, over the feasible runs that record it, of the evaluations spent when the
+    /// best plan first became feasible (`plan --until-feasible` would stop there).
+    #[serde(default)]
+    pub median_first_feasible_evaluations: Option<f64>,
     /// Wall time per run (not in summary.json: it varies between executions).
     #[serde(skip)]
     pub mean_seconds: f64,
@@ -169,6 +173,13 @@ pub fn summarize_records(master_seed: u64, records: &[RunRecord]) -> ExperimentS
                     cost_feasible: summarize(&feas),
                     mean_evaluations: rs.iter().map(|r| r.evaluations as f64).sum::<f64>()
                         / n as f64,
+                    median_first_feasible_evaluations: summarize(
+                        &rs.iter()
+                            .filter_map(|r| r.first_feasible_evaluations)
+                            .map(|e| e as f64)
+                            .collect::<Vec<_>>(),
+                    )
+                    .map(|s| s.median),
                     mean_seconds: rs.iter().map(|r| r.seconds).sum::<f64>() / n as f64,
                     versus_reference: None,
                 }
@@ -315,13 +326,13 @@ pub fn markdown(s: &ExperimentSummary) -> String {
                 g.fr_percent
             );
         }
-        let _ = writeln!(out, "\n| method | optimizer | encoding | init | runs | feasible | near misses (<= 2 violations) | median | std | feasible runs: worst / best / mean / median / std | mean evaluations | mean s/run |\n|---|---|---|---|---|---|---|---|---|---|---|---|");
+        let _ = writeln!(out, "\n| method | optimizer | encoding | init | runs | feasible | near misses (<= 2 violations) | median | std | feasible runs: worst / best / mean / median / std | mean evaluations | median evaluations to the first feasible plan | mean s/run |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|");
         for g in &sc.groups {
             let c = g.cost.as_ref();
             let f = g.cost_feasible.as_ref();
             let _ = writeln!(
                 out,
-                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} / {} / {} / {} / {} | {:.0} | {:.3} |",
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} / {} / {} / {} / {} | {:.0} | {} | {:.3} |",
                 g.method,
                 g.optimizer,
                 g.encoding,
@@ -337,6 +348,7 @@ pub fn markdown(s: &ExperimentSummary) -> String {
                 num(f.map(|c| c.median)),
                 num(f.map(|c| c.std)),
                 g.mean_evaluations,
+                num(g.median_first_feasible_evaluations),
                 g.mean_seconds
             );
         }
@@ -472,7 +484,7 @@ fn ranking_markdown(out: &mut String, r: &SuiteRanking) {
 /// `summary.csv`: one row per scenario, parameter set and method.
 #[must_use]
 pub fn csv(s: &ExperimentSummary) -> String {
-    let mut out = String::from("scenario,param_set,method,optimizer,encoding,init,runs,feasible,near_misses,fr_percent,worst,best,mean,median,std,feasible_worst,feasible_best,feasible_mean,feasible_median,feasible_std,mean_evaluations,mean_seconds,rank_sum_p,rank_sum_p_holm,fisher_p\n");
+    let mut out = String::from("scenario,param_set,method,optimizer,encoding,init,runs,feasible,near_misses,fr_percent,worst,best,mean,median,std,feasible_worst,feasible_best,feasible_mean,feasible_median,feasible_std,mean_evaluations,median_first_feasible_evaluations,mean_seconds,rank_sum_p,rank_sum_p_holm,fisher_p\n");
     let opt = |v: Option<f64>| {
         v.map_or(String::new(), |x| {
             if x.is_finite() {
@@ -489,7 +501,7 @@ pub fn csv(s: &ExperimentSummary) -> String {
             let v = g.versus_reference.as_ref();
             let _ = writeln!(
                 out,
-                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
                 sc.scenario,
                 sc.param_set,
                 g.method,
@@ -511,6 +523,7 @@ pub fn csv(s: &ExperimentSummary) -> String {
                 opt(f.map(|c| c.median)),
                 opt(f.map(|c| c.std)),
                 g.mean_evaluations,
+                opt(g.median_first_feasible_evaluations),
                 g.mean_seconds,
                 opt(v.map(|v| v.rank_sum_p)),
                 opt(v.map(|v| v.rank_sum_p_holm)),
