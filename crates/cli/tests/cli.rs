@@ -367,6 +367,51 @@ fn scenario_generate_writes_a_scenario_that_plans() {
 }
 
 #[test]
+fn scenario_generate_frees_the_pace_and_the_delays_when_asked() {
+    let dir = tempfile::tempdir().unwrap();
+    let toml_path = dir.path().join("gen.toml");
+    swarmplan()
+        .args(["scenario", "generate", "--seed", "2", "--uavs", "4"])
+        .args(["--threats", "3", "--free-pace", "--free-delays"])
+        .arg("--out")
+        .arg(&toml_path)
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(&toml_path).unwrap();
+    assert!(
+        text.starts_with(
+            "# swarmplan scenario generate --seed 2 --uavs 4 --threats 3 --free-pace --free-delays"
+        ),
+        "{text}"
+    );
+    assert!(text.contains("max_delay = 0.3"), "{text}");
+    let out = dir.path().join("p");
+    swarmplan()
+        .args(["plan", "--evaluations", "200", "--no-figures", "--scenario"])
+        .arg(&toml_path)
+        .arg("--out")
+        .arg(&out)
+        .assert()
+        .success();
+    let plan: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("plan.json")).unwrap()).unwrap();
+    let delays: Vec<f64> = plan["uavs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|u| u["delay"].as_f64().unwrap())
+        .collect();
+    assert_eq!(delays.len(), 4);
+    assert!(delays.iter().all(|d| (0.0..=0.3).contains(d)), "{delays:?}");
+    // By name, too: the same request.
+    swarmplan()
+        .args(["scenario", "show", "gen-s2-u4-t3-pace-delay"])
+        .assert()
+        .success()
+        .stdout(predicates::str::contains("max_delay = 0.3"));
+}
+
+#[test]
 fn anytime_stops_at_the_first_feasible_plan_or_at_the_time_limit() {
     let dir = tempfile::tempdir().unwrap();
     let out = swarmplan()

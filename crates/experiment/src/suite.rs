@@ -52,6 +52,7 @@ fn generated(uavs: usize) -> impl Iterator<Item = String> {
             comm_windows: GENERATED_WINDOWS,
             terrain: None,
             free_pace: false,
+            free_delays: false,
         }
         .name()
     })

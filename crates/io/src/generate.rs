@@ -41,10 +41,18 @@ pub struct GenerateRequest {
     /// The fleet's pace free within the speed limits (`timing.pace` = [v_min, v_max] /
     /// cruise, a decision variable; docs/model.md, "Pace"); otherwise fixed at 1.
     pub free_pace: bool,
+    /// Departure delays free up to [`FREE_MAX_DELAY`] of the mission (`timing.max_delay`, a
+    /// decision variable per UAV; docs/model.md, "Departure delays"); otherwise none.
+    pub free_delays: bool,
 }
 
+/// `timing.max_delay` of scenarios with free departure delays (generated with
+/// `--free-delays`, and the outside `-delay` variants): a UAV may wait up to 30 % of the
+/// mission at its start.
+pub const FREE_MAX_DELAY: f64 = 0.3;
+
 impl GenerateRequest {
-    /// The scenario's name, `gen-sK-uN-tM[-wW][-shared][-pace]`, from which [`Self::from_name`]
+    /// The scenario's name, `gen-sK-uN-tM[-wW][-shared][-pace][-delay]`, from which [`Self::from_name`]
     /// gets the request back: a generated scenario can be named wherever a built-in one can
     /// (`plan --scenario gen-s3-u8-t12-w1`, `bench --scenarios`, suites), and a record's
     /// scenario name is enough to rebuild it. Only procedural-terrain requests have names
@@ -60,6 +68,9 @@ impl GenerateRequest {
         }
         if self.free_pace {
             name.push_str("-pace");
+        }
+        if self.free_delays {
+            name.push_str("-delay");
         }
         name
     }
@@ -88,10 +99,12 @@ impl GenerateRequest {
             comm_windows: 0,
             terrain: None,
             free_pace: false,
+            free_delays: false,
         };
         for p in parts {
             match p {
                 "pace" if !req.free_pace => req.free_pace = true,
+                "delay" if !req.free_delays => req.free_delays = true,
                 "shared" if !req.shared_start => req.shared_start = true,
                 w if w.starts_with('w') && req.comm_windows == 0 && !req.shared_start => {
                     let digits = &w[1..];
@@ -288,6 +301,9 @@ pub fn generate(req: &GenerateRequest) -> Result<ScenarioSpec, GenerateError> {
     if req.free_pace {
         free_pace(&mut spec);
     }
+    if req.free_delays {
+        spec.timing.max_delay = FREE_MAX_DELAY;
+    }
     spec.planning.seed = 1;
     spec.validate().map_err(|e| {
         GenerateError::Template(ScenarioError::Invalid {
@@ -312,21 +328,23 @@ mod tests {
             comm_windows: 1,
             terrain: None,
             free_pace: false,
+            free_delays: false,
         }
     }
 
     #[test]
     fn names_give_the_request_back() {
-        for (seed, uavs, threats, windows, shared, free_pace) in [
-            (3, 8, 12, 1, false, false),
-            (1, 20, 0, 0, true, false),
-            (17, 5, 30, 2, true, true),
-            (4, 12, 10, 0, false, true),
+        for (seed, uavs, threats, windows, shared, free_pace, free_delays) in [
+            (3, 8, 12, 1, false, false, false),
+            (1, 20, 0, 0, true, false, true),
+            (17, 5, 30, 2, true, true, false),
+            (4, 12, 10, 0, false, true, true),
         ] {
             let req = GenerateRequest {
                 comm_windows: windows,
                 shared_start: shared,
                 free_pace,
+                free_delays,
                 ..request(seed, uavs, threats)
             };
             let name = req.name();
@@ -338,6 +356,10 @@ mod tests {
             let spec = generate(&req).unwrap();
             assert_eq!(spec.name, name);
             assert_eq!(spec.timing.pace_is_free(), free_pace, "{name}");
+            assert_eq!(spec.timing.delay_is_free(), free_delays, "{name}");
+            if free_delays {
+                assert_eq!(spec.timing.max_delay, FREE_MAX_DELAY, "{name}");
+            }
             if free_pace {
                 let u = &spec.uavs[0];
                 assert_eq!(spec.timing.pace[1], u.speed[1] / u.cruise_speed);
@@ -352,6 +374,8 @@ mod tests {
             "gen-s1-u8-t12-shared-w1",
             "gen-s1-u8-t12-pace-shared",
             "gen-s1-u8-t12-pace-pace",
+            "gen-s1-u8-t12-delay-pace",
+            "gen-s1-u8-t12-delay-delay",
             "gen-s-1-u8-t12",
             "paper-case1",
         ] {

@@ -44,8 +44,9 @@ pub const DEFAULT_UAVS: usize = 5;
 /// Instances in the shared folder (`outside-0` to `outside-3`).
 pub const INSTANCES: usize = 4;
 
-/// `timing.max_delay` of the `-delay` variants: a UAV may wait up to 30 % of the mission.
-pub const OUTSIDE_MAX_DELAY: f64 = 0.3;
+/// `timing.max_delay` of the `-delay` variants: a UAV may wait up to 30 % of the mission,
+/// as in generated scenarios with free delays.
+pub const OUTSIDE_MAX_DELAY: f64 = crate::generate::FREE_MAX_DELAY;
 
 /// An instance file as the outside generator writes it.
 #[derive(Debug, Deserialize)]

@@ -29,6 +29,7 @@ fn generated() -> World {
         comm_windows: 0,
         terrain: None,
         free_pace: false,
+        free_delays: false,
     })
     .unwrap();
     let loaded = LoadedSpec {

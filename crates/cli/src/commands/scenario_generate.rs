@@ -29,6 +29,11 @@ pub struct ScenarioGenerateArgs {
     /// decision variable, docs/model.md "Pace"); default: fixed nearest cruise.
     #[arg(long)]
     pub free_pace: bool,
+    /// Let the planner choose each UAV's departure delay, a hover at its start of up to
+    /// 30 % of the mission (timing.max_delay; docs/model.md "Departure delays"); default:
+    /// every UAV leaves at once.
+    #[arg(long)]
+    pub free_delays: bool,
     /// DEM (GeoTIFF or ESRI ASCII) whose extent becomes the map (default: procedural).
     #[arg(long)]
     pub terrain: Option<PathBuf>,
@@ -46,9 +51,10 @@ pub fn run(args: &ScenarioGenerateArgs) -> Result<()> {
         comm_windows: args.comm_windows,
         terrain: args.terrain.as_ref().map(|p| p.display().to_string()),
         free_pace: args.free_pace,
+        free_delays: args.free_delays,
     })?;
     let text = format!(
-        "# swarmplan scenario generate --seed {} --uavs {} --threats {}{}{}{}{}\n{}",
+        "# swarmplan scenario generate --seed {} --uavs {} --threats {}{}{}{}{}{}\n{}",
         args.seed,
         args.uavs,
         args.threats,
@@ -63,6 +69,11 @@ pub fn run(args: &ScenarioGenerateArgs) -> Result<()> {
             String::new()
         },
         if args.free_pace { " --free-pace" } else { "" },
+        if args.free_delays {
+            " --free-delays"
+        } else {
+            ""
+        },
         args.terrain
             .as_ref()
             .map_or(String::new(), |t| format!(" --terrain {}", t.display())),
