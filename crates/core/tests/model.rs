@@ -774,3 +774,63 @@ fn out_of_range_delays_are_timed_as_the_nearest_admissible_share() {
         assert!(a.total.is_finite(), "{d}: {}", a.total);
     }
 }
+
+#[test]
+fn the_search_and_the_report_agree_on_terrain_clearance() {
+    // Smooth hills; paths that hug them at about the 10 m clearance, so that many segments
+    // graze it between their samples.
+    let nx = 101;
+    let ground = |x: f64, y: f64| 60.0 + 40.0 * (x / 97.0).sin() * (y / 61.0).cos();
+    let h: Vec<f64> = (0..nx)
+        .flat_map(|j| (0..nx).map(move |i| ground(10.0 * i as f64, 10.0 * j as f64)))
+        .collect();
+    let t = Terrain::new(nx, nx, (0.0, 0.0), (10.0, 10.0), h, Sampling::Bilinear).unwrap();
+    let w = World::new(spec(&[[100.0, 100.0, 150.0]]), t).unwrap();
+    let mut state = 0x2545_f491_4f6c_dd1d_u64;
+    let mut uniform = |lo: f64, hi: f64| {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        lo + (hi - lo) * (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let (mut grazing, mut clear) = (0, 0);
+    for _ in 0..300 {
+        let mut points = vec![[100.0, 100.0, 150.0]];
+        for k in 1..4 {
+            let s = k as f64 / 4.0;
+            let (x, y) = (
+                100.0 + 800.0 * s + uniform(-40.0, 40.0),
+                100.0 + 800.0 * s + uniform(-40.0, 40.0),
+            );
+            // Waypoint heights are above ground; the segments between them are straight.
+            points.push([x, y, 10.0 + uniform(0.0, 12.0)]);
+        }
+        points.push([900.0, 900.0, 150.0]);
+        let plan = Plan {
+            pace: 1.0,
+            delays: Vec::new(),
+            uavs: vec![path(&points)],
+        };
+        let report = assess(&w, &plan, true);
+        let search = assess(&w, &plan, false);
+        assert_eq!(
+            report.violation.to_bits(),
+            search.violation.to_bits(),
+            "{points:?}"
+        );
+        if report
+            .violations
+            .iter()
+            .flatten()
+            .any(|v| v.kind == ViolationKind::Terrain)
+        {
+            grazing += 1;
+        } else {
+            clear += 1;
+        }
+    }
+    assert!(
+        grazing > 30 && clear > 30,
+        "{grazing} grazing, {clear} clear"
+    );
+}

@@ -282,38 +282,84 @@ impl Terrain {
         a.is_finite() && b.is_finite() && self.clears(a, b, margin, step, 40)
     }
 
+    /// Samples of segment a-b in a clearance check every `step` metres: the points
+    /// `a.lerp(b, i / n)`, i = 0..=n, with n = ceil(horizontal length / step) (at least 1).
+    #[must_use]
+    pub fn samples_on(a: glam::DVec3, b: glam::DVec3, step: f64) -> usize {
+        ((a.truncate().distance(b.truncate()) / step).ceil() as usize).max(1)
+    }
+
+    /// Whether every sample `a.lerp(b, i / n)`, i = 0..=n, is at least `min_clearance`
+    /// above the ground: the verdict of testing each sample, found faster. A range of samples
+    /// whose lower end is above the pyramid's bound over its box plus `min_clearance` is
+    /// clear at once (every sample of it lies in that box, since lerp is monotone in its
+    /// parameter, and no higher than the ground under it allows); other ranges are halved
+    /// down to three samples, which are tested one by one.
+    #[must_use]
+    pub fn samples_clear(
+        &self,
+        a: glam::DVec3,
+        b: glam::DVec3,
+        n: usize,
+        min_clearance: f64,
+    ) -> bool {
+        let at = |i: usize| a.lerp(b, i as f64 / n as f64);
+        let ok = |q: glam::DVec3| q.z - self.height(q.x, q.y) >= min_clearance;
+        let mut stack = vec![(0, n.max(1))];
+        while let Some((i0, i1)) = stack.pop() {
+            let (p0, p1) = (at(i0), at(i1));
+            if p0.is_finite()
+                && p1.is_finite()
+                && p0.z.min(p1.z) - min_clearance > self.max_in_rect(p0.x, p0.y, p1.x, p1.y)
+            {
+                continue;
+            }
+            if i1 - i0 <= 2 {
+                if !(i0..=i1).all(|i| ok(at(i))) {
+                    return false;
+                }
+                continue;
+            }
+            let mid = i0 + (i1 - i0) / 2;
+            stack.push((mid, i1));
+            stack.push((i0, mid));
+        }
+        true
+    }
+
     /// Calls `not_clear(s)` for each segment s of the polyline `points` (from `points[s]` to
-    /// `points[s + 1]`) that [`Terrain::segment_clears`] does not accept, in order.
+    /// `points[s + 1]`) of which some sample of a clearance check every `step` metres
+    /// ([`Terrain::samples_on`]) is less than `min_clearance` above the ground, in order: the
+    /// verdicts of testing every sample of every segment, found faster.
     ///
-    /// The same verdicts as testing each segment, found faster: a run of segments whose
-    /// lowest point is above the bound of the run's bounding box is clear at once, since
-    /// that bound is never below the bound of any rectangle inside it (the box of a larger
-    /// rectangle is read at the same or a coarser pyramid level, whose cells are maxima of
-    /// the finer ones), so each segment's own first test would have passed. Runs that fail
-    /// are halved down to single segments. The arcs of a flown path are many short chords,
-    /// so most of a path clears in a few look-ups.
+    /// A run of segments whose lowest point is above the pyramid's bound over the run's
+    /// bounding box plus `min_clearance` is clear at once (that bound is never below the
+    /// ground at any point of the box); runs that fail are halved down to single segments,
+    /// which [`Terrain::samples_clear`] decides. The arcs of a flown path are many short
+    /// chords, so most of a path clears in a few look-ups.
     pub fn for_each_segment_not_clear(
         &self,
         points: &[glam::DVec3],
-        margin: f64,
+        min_clearance: f64,
         step: f64,
         not_clear: &mut impl FnMut(usize),
     ) {
-        self.run_not_clear(points, 0, margin, step, not_clear);
+        self.run_not_clear(points, 0, min_clearance, step, not_clear);
     }
 
     fn run_not_clear(
         &self,
         points: &[glam::DVec3],
         first: usize,
-        margin: f64,
+        min_clearance: f64,
         step: f64,
         not_clear: &mut impl FnMut(usize),
     ) {
         match points.len() {
             0 | 1 => {}
             2 => {
-                if !self.segment_clears(points[0], points[1], margin, step) {
+                let (a, b) = (points[0], points[1]);
+                if !self.samples_clear(a, b, Self::samples_on(a, b, step), min_clearance) {
                     not_clear(first);
                 }
             }
@@ -325,12 +371,12 @@ impl Terrain {
                     lo = lo.min(*p);
                     hi = hi.max(*p);
                 }
-                if finite && lo.z - margin > self.max_in_rect(lo.x, lo.y, hi.x, hi.y) {
+                if finite && lo.z - min_clearance > self.max_in_rect(lo.x, lo.y, hi.x, hi.y) {
                     return;
                 }
                 let mid = len / 2;
-                self.run_not_clear(&points[..=mid], first, margin, step, not_clear);
-                self.run_not_clear(&points[mid..], first + mid, margin, step, not_clear);
+                self.run_not_clear(&points[..=mid], first, min_clearance, step, not_clear);
+                self.run_not_clear(&points[mid..], first + mid, min_clearance, step, not_clear);
             }
         }
     }
@@ -464,7 +510,7 @@ mod tests {
     }
 
     #[test]
-    fn runs_of_segments_get_the_verdicts_of_single_segments() {
+    fn runs_of_segments_get_the_verdicts_of_every_sample() {
         // A bumpy grid under zig-zag polylines that graze it, some points non-finite.
         let (nx, ny) = (64, 48);
         let h: Vec<f64> = (0..ny)
@@ -488,10 +534,19 @@ mod tests {
                 points[n / 2].z = f64::NAN;
             }
             let margin = (r % 3) as f64;
+            let step = [1.0, 0.7, 5.0][r % 3];
             let mut found = Vec::new();
-            t.for_each_segment_not_clear(&points, margin, 1.0, &mut |s| found.push(s));
+            t.for_each_segment_not_clear(&points, margin, step, &mut |s| found.push(s));
+            // Every sample tested one by one, as a report's exact check does.
             let expected: Vec<usize> = (0..n - 1)
-                .filter(|&s| !t.segment_clears(points[s], points[s + 1], margin, 1.0))
+                .filter(|&s| {
+                    let (a, b) = (points[s], points[s + 1]);
+                    let k = Terrain::samples_on(a, b, step);
+                    !(0..=k).all(|i| {
+                        let q = a.lerp(b, i as f64 / k as f64);
+                        q.z - t.height(q.x, q.y) >= margin
+                    })
+                })
                 .collect();
             assert_eq!(found, expected, "polyline {r}");
             failing += expected.len();
