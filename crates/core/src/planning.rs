@@ -15,6 +15,7 @@ use crate::plan::Plan;
 use crate::problem::{fill_uniform, Bound, Evaluation, Problem};
 use crate::rng::Rng;
 use crate::world::World;
+use rand_distr::{Distribution, StandardNormal};
 
 /// A world with an encoding and an initialisation.
 pub struct PlanningProblem<'w> {
@@ -26,6 +27,10 @@ pub struct PlanningProblem<'w> {
     /// Threat-free corridors per UAV, computed once for the `corridor` initialisation.
     corridors: crate::encoding::corridor::Corridors,
 }
+
+/// Horizontal spread of a nudge ([`Problem::nudge`]), in separation distances: enough to
+/// turn two converging approaches apart at the edge of the landing zone.
+pub const NUDGE_SEPARATIONS: f64 = 2.0;
 
 thread_local! {
     static BUFFERS: RefCell<(Plan, Scratch)> = RefCell::new((Plan::default(), Scratch::default()));
@@ -179,6 +184,36 @@ impl Problem for PlanningProblem<'_> {
     fn block_size(&self) -> usize {
         let timing = &self.world.spec.timing;
         3 * self.frame.n + usize::from(timing.pace_is_free()) + usize::from(timing.delay_is_free())
+    }
+
+    /// Free waypoint k of UAV `block` (uniform among them) moved by a Gaussian offset,
+    /// [`NUDGE_SEPARATIONS`] separation distances wide horizontally and one vertically,
+    /// clamped into the map box and the altitude band; the plan is then encoded again, so
+    /// in a motion encoding only the moves into and out of that waypoint change.
+    fn nudge(&self, x: &[f64], block: usize, rng: &mut Rng, out: &mut [f64]) -> bool {
+        let size = self.block_size();
+        let f = &self.frame;
+        if f.n == 0 || block >= self.world.uav_count() || out.len() != size {
+            return false;
+        }
+        let mut plan = self.encoding.decode(x);
+        let k = rand::Rng::random_range(rng, 1..=f.n);
+        let sep = self.world.spec.timing.separation.max(1.0);
+        let mut normal = || -> f64 { StandardNormal.sample(rng) };
+        let (dx, dy, dz) = (normal(), normal(), normal());
+        let Some(w) = plan
+            .uavs
+            .get_mut(block)
+            .and_then(|p| p.waypoints.get_mut(k))
+        else {
+            return false;
+        };
+        w.x = (w.x + NUDGE_SEPARATIONS * sep * dx).clamp(f.x[0], f.x[1]);
+        w.y = (w.y + NUDGE_SEPARATIONS * sep * dy).clamp(f.y[0], f.y[1]);
+        w.z = (w.z + sep * dz).clamp(f.z[0], f.z[1]);
+        let encoded = self.encode(&plan);
+        out.copy_from_slice(&encoded[block * size..(block + 1) * size]);
+        true
     }
 
     fn sample_initial(&self, rng: &mut Rng, out: &mut [f64]) {

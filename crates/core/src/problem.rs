@@ -146,6 +146,16 @@ pub trait Problem: Sync {
         self.bounds().len()
     }
 
+    /// A local move of block `block` of `x`, written into `out` (that block's values, inside
+    /// the bounds): for a planning problem, one free waypoint of the UAV moved by a few
+    /// separation distances, the rest of its path kept where it is. Returns false, writing
+    /// nothing, when the problem has no such move (the default). Not an evaluation; it draws
+    /// only from `rng`.
+    fn nudge(&self, x: &[f64], block: usize, rng: &mut Rng, out: &mut [f64]) -> bool {
+        let _ = (x, block, rng, out);
+        false
+    }
+
     /// [`Problem::evaluate`], also writing into `by_block` each block's share of the
     /// violation (a planning problem: each UAV's, a pair's violation counting for both), so
     /// a decomposing optimizer can search where the violations are. The shares need not sum

@@ -834,3 +834,52 @@ fn the_search_and_the_report_agree_on_terrain_clearance() {
         "{grazing} grazing, {clear} clear"
     );
 }
+
+#[test]
+fn a_nudge_moves_one_free_waypoint_of_one_uav_and_keeps_the_rest() {
+    use swarmplan_core::encoding::{EncodingKind, InitKind};
+    use swarmplan_core::planning::PlanningProblem;
+    use swarmplan_core::problem::Problem;
+    let mut s = spec(&[[100.0, 100.0, 150.0], [140.0, 100.0, 150.0]]);
+    s.timing.max_delay = 0.2; // a block with a delay value too
+    let w = World::new(s, flat()).unwrap();
+    let p = PlanningProblem::new(&w, EncodingKind::Spherical, InitKind::Line);
+    let mut rng = swarmplan_core::rng::rng_from_seed(5);
+    let size = p.block_size();
+    let mut x = vec![0.0; p.dimension()];
+    let mut moved_by = Vec::new();
+    for _ in 0..50 {
+        p.sample_initial(&mut rng, &mut x);
+        let mut block = vec![f64::NAN; size];
+        assert!(p.nudge(&x, 1, &mut rng, &mut block));
+        let mut y = x.clone();
+        y[size..2 * size].copy_from_slice(&block);
+        for (b, v) in block.iter().enumerate() {
+            let bound = p.bounds()[size + b];
+            assert!(bound.lo <= *v && *v <= bound.hi, "value {b} outside its bound");
+        }
+        let (before, after) = (p.decode(&x), p.decode(&y));
+        assert_eq!(before.uavs[0].waypoints, after.uavs[0].waypoints);
+        assert!((before.delay(1) - after.delay(1)).abs() < 1e-12);
+        let gaps: Vec<f64> = before.uavs[1]
+            .waypoints
+            .iter()
+            .zip(&after.uavs[1].waypoints)
+            .map(|(a, b)| a.distance(*b))
+            .collect();
+        let moved: Vec<usize> = (0..gaps.len()).filter(|&k| gaps[k] > 1e-6).collect();
+        if let Some(&k) = moved.first() {
+            // The start, the goal and everything before the moved waypoint stay.
+            assert!(k >= 1 && moved.iter().all(|&m| m + 1 < gaps.len()), "{gaps:?}");
+            moved_by.push((gaps[k], moved.len()));
+        }
+    }
+    // Most nudges move their waypoint by metres (a few are clamped at the altitude band),
+    // and most move only it: the motion encoding changes the moves into and out of it, and
+    // a later waypoint follows only when a move hits its bounds (length, heading sector).
+    assert!(moved_by.len() >= 40, "{}", moved_by.len());
+    let mean = moved_by.iter().map(|m| m.0).sum::<f64>() / moved_by.len() as f64;
+    assert!((10.0..60.0).contains(&mean), "mean move {mean} m");
+    let alone = moved_by.iter().filter(|m| m.1 == 1).count();
+    assert!(alone * 10 >= moved_by.len() * 6, "{alone} of {}", moved_by.len());
+}

@@ -52,6 +52,14 @@
 //! runs into 18; the perturbation, the spread and, where free, the departure delays then
 //! separate the copy from its donor.
 //!
+//! **Nudges** (`nudges`). In the same visits, up to `nudges` of the perturbed particles are
+//! the problem's local move of the context's path ([`Evaluator::nudge`]): one free waypoint
+//! moved by a Gaussian offset of two separation distances sideways and one in height, the
+//! rest of the path kept. A perturbation of every value of a motion-encoded path moves all
+//! of it; what is left near feasibility is local (two UAVs converging at the edge of the
+//! landing zone, a corner clipping a threat), and one waypoint moved fixes it without
+//! breaking the rest.
+//!
 //! **Restarts.** A context can be stuck in a state no single block can repair (all UAVs out
 //! of contact in an interference window, where only a joint move makes a relay chain; a
 //! path wedged against a threat). When `restart_after` rounds (a visit of every block) in a
@@ -130,6 +138,12 @@ pub struct CoopParams {
     /// nearby starts to one goal, so a way round the threats that one UAV has found is
     /// usually open to another whose own sector search is stuck on the wrong side.
     pub transplant: bool,
+    /// Particles of a visit of a violating block (infeasible context) that are the
+    /// problem's local move of the context's block ([`Evaluator::nudge`]; in a planning
+    /// problem one free waypoint moved by a few separation distances), taken from the
+    /// perturbed ones (4, all but one of them at the default population; 0: none, and no
+    /// random draw for them). Measured in docs/results.md ("Nudges").
+    pub nudges: usize,
 }
 
 impl CoopParams {
@@ -149,6 +163,7 @@ impl CoopParams {
         focus: 1.0,
         synchronous: true,
         transplant: true,
+        nudges: 4,
     };
 
     pub fn validate(&self) -> Result<(), ParamsError> {
@@ -462,6 +477,14 @@ impl Cooperative {
         let mut sample = std::mem::take(&mut self.scratch);
         sample.resize(self.dim, 0.0);
         let donor = self.transplant_donor(b, fresh, rng);
+        // Nudges come just before the transplant (the last particle), after the fresh ones.
+        let last_perturbed = n - 1 - usize::from(donor.is_some());
+        let nudges = if self.violating(b) {
+            self.params.nudges.min(last_perturbed.saturating_sub(fresh))
+        } else {
+            0
+        };
+        let first_nudge = last_perturbed + 1 - nudges;
         let mut from = 1;
         while from < n {
             let to = (from + self.chunk()).min(n);
@@ -469,6 +492,10 @@ impl Cooperative {
                 if i <= fresh {
                     ev.sample_initial(rng, &mut sample);
                     self.x[i * len..(i + 1) * len].copy_from_slice(&sample[r.clone()]);
+                } else if (first_nudge..=last_perturbed).contains(&i)
+                    && ev.nudge(&self.context, b, rng, &mut self.x[i * len..(i + 1) * len])
+                {
+                    // The problem's local move of the context's block.
                 } else {
                     // The last particle is the transplant when there is one; the centre
                     // of the others is the context's own block.
@@ -497,6 +524,13 @@ impl Cooperative {
         self.scratch = sample;
     }
 
+    /// Whether block `b` holds a violation of an infeasible context (and blocks are UAVs).
+    fn violating(&self, b: usize) -> bool {
+        self.params.decompose
+            && !self.context_eval.feasible()
+            && self.context_shares.get(b).is_some_and(|&v| v > 0.0)
+    }
+
     /// The block whose path the transplant particle of a visit of block `b` starts from, or
     /// `None` (transplants off, a feasible context, `b` without a violation of its own, a
     /// single block, or no particle left after the context and the fresh ones). A block
@@ -504,11 +538,9 @@ impl Cooperative {
     fn transplant_donor(&self, b: usize, fresh: usize, rng: &mut Rng) -> Option<usize> {
         let blocks = self.blocks();
         let wanted = self.params.transplant
-            && self.params.decompose
             && blocks > 1
             && fresh + 1 < self.params.population
-            && !self.context_eval.feasible()
-            && self.context_shares.get(b).is_some_and(|&v| v > 0.0);
+            && self.violating(b);
         if !wanted || self.range(b).len() != self.block {
             return None;
         }
@@ -862,6 +894,63 @@ mod tests {
             );
             assert!(!run(false, seed), "seed {seed}: crossed without transplant");
         }
+    }
+
+    /// [`LastBlockViolated`]'s plateau, counting the nudges asked for, per block.
+    struct CountsNudges {
+        inner: LastBlockViolated,
+        asked: std::sync::Mutex<Vec<usize>>,
+    }
+
+    impl Problem for CountsNudges {
+        fn bounds(&self) -> &[Bound] {
+            self.inner.bounds()
+        }
+        fn evaluate(&self, x: &[f64]) -> Evaluation {
+            self.inner.evaluate(x)
+        }
+        fn evaluate_blocks(&self, x: &[f64], by_block: &mut Vec<f64>) -> Evaluation {
+            self.inner.evaluate_blocks(x, by_block)
+        }
+        fn block_size(&self) -> usize {
+            3
+        }
+        fn nudge(&self, x: &[f64], block: usize, _: &mut Rng, out: &mut [f64]) -> bool {
+            self.asked.lock().expect("not poisoned")[block] += 1;
+            out.copy_from_slice(&x[3 * block..3 * block + 3]);
+            true
+        }
+    }
+
+    #[test]
+    fn nudges_go_to_the_violating_block_only_and_only_when_asked_for() {
+        let asked = |nudges: usize| {
+            let p = CountsNudges {
+                inner: LastBlockViolated {
+                    bounds: vec![Bound::new(-5.0, 5.0); 12],
+                    prev: std::sync::Mutex::new(vec![f64::NAN; 12]),
+                    visiting_last: 0.into(),
+                },
+                asked: std::sync::Mutex::new(vec![0; 4]),
+            };
+            let mut opt = Cooperative::new(CoopParams {
+                nudges,
+                focus: 0.0,
+                ..CoopParams::DEFAULT
+            });
+            let _ = solve(
+                &p,
+                &mut opt,
+                Budget::evaluations(3000),
+                &mut rng_from_seed(3),
+                &mut |_| {},
+            );
+            p.asked.into_inner().expect("not poisoned")
+        };
+        assert_eq!(asked(0), vec![0; 4]);
+        let two = asked(2);
+        assert_eq!(two[..3], [0, 0, 0], "{two:?}");
+        assert!(two[3] >= 4 && two[3] % 2 == 0, "two per visit of block 3: {two:?}");
     }
 
     #[test]

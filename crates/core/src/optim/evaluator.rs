@@ -63,6 +63,11 @@ impl<'a> Evaluator<'a> {
         self.problem.sample_initial(rng, out);
     }
 
+    /// The problem's local move of one block ([`Problem::nudge`]; not an evaluation).
+    pub fn nudge(&self, x: &[f64], block: usize, rng: &mut Rng, out: &mut [f64]) -> bool {
+        self.problem.nudge(x, block, rng, out)
+    }
+
     /// The bounds of the problem (borrowed from the problem, not from the evaluator, so an
     /// optimizer can hold them while it evaluates).
     #[must_use]
