@@ -856,7 +856,10 @@ fn a_nudge_moves_one_free_waypoint_of_one_uav_and_keeps_the_rest() {
         y[size..2 * size].copy_from_slice(&block);
         for (b, v) in block.iter().enumerate() {
             let bound = p.bounds()[size + b];
-            assert!(bound.lo <= *v && *v <= bound.hi, "value {b} outside its bound");
+            assert!(
+                bound.lo <= *v && *v <= bound.hi,
+                "value {b} outside its bound"
+            );
         }
         let (before, after) = (p.decode(&x), p.decode(&y));
         assert_eq!(before.uavs[0].waypoints, after.uavs[0].waypoints);
@@ -870,7 +873,10 @@ fn a_nudge_moves_one_free_waypoint_of_one_uav_and_keeps_the_rest() {
         let moved: Vec<usize> = (0..gaps.len()).filter(|&k| gaps[k] > 1e-6).collect();
         if let Some(&k) = moved.first() {
             // The start, the goal and everything before the moved waypoint stay.
-            assert!(k >= 1 && moved.iter().all(|&m| m + 1 < gaps.len()), "{gaps:?}");
+            assert!(
+                k >= 1 && moved.iter().all(|&m| m + 1 < gaps.len()),
+                "{gaps:?}"
+            );
             moved_by.push((gaps[k], moved.len()));
         }
     }
@@ -881,5 +887,9 @@ fn a_nudge_moves_one_free_waypoint_of_one_uav_and_keeps_the_rest() {
     let mean = moved_by.iter().map(|m| m.0).sum::<f64>() / moved_by.len() as f64;
     assert!((10.0..60.0).contains(&mean), "mean move {mean} m");
     let alone = moved_by.iter().filter(|m| m.1 == 1).count();
-    assert!(alone * 10 >= moved_by.len() * 6, "{alone} of {}", moved_by.len());
+    assert!(
+        alone * 10 >= moved_by.len() * 6,
+        "{alone} of {}",
+        moved_by.len()
+    );
 }

@@ -950,7 +950,10 @@ mod tests {
         assert_eq!(asked(0), vec![0; 4]);
         let two = asked(2);
         assert_eq!(two[..3], [0, 0, 0], "{two:?}");
-        assert!(two[3] >= 4 && two[3] % 2 == 0, "two per visit of block 3: {two:?}");
+        assert!(
+            two[3] >= 4 && two[3] % 2 == 0,
+            "two per visit of block 3: {two:?}"
+        );
     }
 
     #[test]
