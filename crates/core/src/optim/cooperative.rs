@@ -48,9 +48,9 @@
 //! like the other particles. The fleet flies from one start, or nearby ones, to one goal,
 //! so a way between the threats that one UAV has found is open to the others; a UAV's own
 //! sub-swarm searches near its current path and rarely crosses to the other side of a
-//! threat cluster. On the outside instances (docs/results.md) this turned 11 of 40 feasible
-//! runs into 18; the perturbation, the spread and, where free, the departure delays then
-//! separate the copy from its donor.
+//! threat cluster. On the outside instances (docs/results.md, paired seeds) 33 of 80 runs
+//! were feasible with transplants against 24 without; the perturbation, the spread, the
+//! nudges and, where free, the departure delays then separate the copy from its donor.
 //!
 //! **Nudges** (`nudges`). In the same visits, up to `nudges` of the perturbed particles are
 //! the problem's local move of the context's path ([`Evaluator::nudge`]): one free waypoint
@@ -141,8 +141,9 @@ pub struct CoopParams {
     /// Particles of a visit of a violating block (infeasible context) that are the
     /// problem's local move of the context's block ([`Evaluator::nudge`]; in a planning
     /// problem one free waypoint moved by a few separation distances), taken from the
-    /// perturbed ones (4, all but one of them at the default population; 0: none, and no
-    /// random draw for them). Measured in docs/results.md ("Nudges").
+    /// perturbed ones (4: at the default population all of them but one, or two when there
+    /// is no transplant; 0: none, and no random draw for them). Measured in
+    /// docs/results.md ("Nudges").
     pub nudges: usize,
 }
 
