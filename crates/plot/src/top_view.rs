@@ -2,7 +2,8 @@
 //! cylinders as circles in data units (filled hard zone r + size, dashed danger band
 //! r + 11 size), interference disks, ground nodes, each UAV's path with its waypoints, and a
 //! mark wherever a UAV was out of contact (sampled at every communication step) with the
-//! times of each outage. A colour bar and the legend sit in a panel to the right.
+//! times of each outage, and at its start how long a UAV with a departure delay hovers there
+//! ("UAV 4 waits 11.6 s"). A colour bar and the legend sit in a panel to the right.
 //!
 //! One metre east is one metre north on screen: the chart's margins are computed so that the
 //! plotting area has the map's aspect ratio ([`equal_aspect_margins`]).
@@ -393,13 +394,23 @@ impl Figure for TopView<'_> {
                 .color(&style::VIOLATION_TEXT);
             let (w, h) = root.estimate_text_size(&place.label, &text)?;
             if let Some(tl) = labels.place(at, (w as i32, h as i32), s) {
-                let pad = s.off(2.0);
-                let rect = [
-                    (tl.0 - pad, tl.1 - pad),
-                    (tl.0 + w as i32 + pad, tl.1 + h as i32 + pad),
-                ];
-                root.draw(&Rectangle::new(rect, WHITE.mix(0.8).filled()))?;
-                root.draw(&Text::new(place.label.clone(), tl, text))?;
+                boxed_label(root, tl, (w, h), place.label.clone(), text, s)?;
+            }
+        }
+
+        // Departure delays: a UAV that hovers at its start before it leaves, labelled there.
+        for (i, f) in flown.paths.iter().enumerate() {
+            if f.depart <= 0.0 || !f.depart.is_finite() {
+                continue;
+            }
+            let Some(p) = f.abs.first() else { continue };
+            let at = chart.backend_coord(&(p.x, p.y));
+            let label = format!("UAV {i} waits {} s", format_value(f.depart));
+            let c = style::shade(style::uav_colour(i), 0.85);
+            let text: TextStyle = (FONT, s.font(15.0)).into_font().color(&c);
+            let (w, h) = root.estimate_text_size(&label, &text)?;
+            if let Some(tl) = labels.place(at, (w as i32, h as i32), s) {
+                boxed_label(root, tl, (w, h), label, text, s)?;
             }
         }
 
@@ -467,16 +478,9 @@ impl Figure for TopView<'_> {
             let text: TextStyle = (FONT, s.font(15.0)).into_font().color(&style::INTERFERENCE);
             let (w, h) = root.estimate_text_size(&label, &text)?;
             let top = chart.backend_coord(&(win.center[0], win.center[1] + win.radius));
-            let Some(tl) = labels.place(top, (w as i32, h as i32), s) else {
-                continue;
-            };
-            let pad = s.off(2.0);
-            let rect = [
-                (tl.0 - pad, tl.1 - pad),
-                (tl.0 + w as i32 + pad, tl.1 + h as i32 + pad),
-            ];
-            root.draw(&Rectangle::new(rect, WHITE.mix(0.8).filled()))?;
-            root.draw(&Text::new(label, tl, text))?;
+            if let Some(tl) = labels.place(top, (w as i32, h as i32), s) {
+                boxed_label(root, tl, (w, h), label, text, s)?;
+            }
         }
 
         // Side panel: colour bar above, legend below.
@@ -485,6 +489,24 @@ impl Figure for TopView<'_> {
         self.draw_colour_bar(&bar, s)?;
         legend::draw(&rest, &self.legend_entries(s), s.off(10.0), s)
     }
+}
+
+/// `label` with its top left at `tl` (`size` its text's pixels), on a white ground.
+fn boxed_label<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    tl: (i32, i32),
+    (w, h): (u32, u32),
+    label: String,
+    text: TextStyle,
+    s: Scale,
+) -> DrawResult<(), DB> {
+    let pad = s.off(2.0);
+    let rect = [
+        (tl.0 - pad, tl.1 - pad),
+        (tl.0 + w as i32 + pad, tl.1 + h as i32 + pad),
+    ];
+    root.draw(&Rectangle::new(rect, WHITE.mix(0.8).filled()))?;
+    root.draw(&Text::new(label, tl, text))
 }
 
 /// Pixel boxes already taken by labels, and the search for a free place for a new one.

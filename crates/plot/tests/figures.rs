@@ -328,6 +328,21 @@ fn failures_name_the_file() {
 }
 
 #[test]
+fn a_uav_that_waits_at_its_start_is_labelled_there() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = tiny();
+    let mut p = plan(&world);
+    p.delays = vec![0.0; p.uavs.len()];
+    p.delays[1] = 0.2;
+    let w = top_view(&world, &p, "t", dir.path().join("top")).unwrap();
+    let svg = std::fs::read_to_string(&w.svg).unwrap();
+    assert!(svg.contains("UAV 1 waits"), "no hover label");
+    assert!(!svg.contains("UAV 0 waits"), "a UAV without delay labelled");
+    let w = top_view(&world, &plan(&world), "t", dir.path().join("plain")).unwrap();
+    assert!(!std::fs::read_to_string(&w.svg).unwrap().contains("waits"));
+}
+
+#[test]
 fn an_infeasible_plan_has_its_violations_marked() {
     let dir = tempfile::tempdir().unwrap();
     let world = tiny();
