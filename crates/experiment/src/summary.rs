@@ -175,6 +175,7 @@ pub fn summarize_records(master_seed: u64, records: &[RunRecord]) -> ExperimentS
                         / n as f64,
                     median_first_feasible_evaluations: summarize(
                         &rs.iter()
+                            .filter(|r| r.feasible)
                             .filter_map(|r| r.first_feasible_evaluations)
                             .map(|e| e as f64)
                             .collect::<Vec<_>>(),

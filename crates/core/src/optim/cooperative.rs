@@ -545,24 +545,15 @@ impl Cooperative {
         if !wanted || self.range(b).len() != self.block {
             return None;
         }
-        let full = |d: &usize| *d != b && self.range(*d).len() == self.block;
-        let clean = (0..blocks)
-            .filter(full)
-            .filter(|&d| self.context_shares[d] <= 0.0)
-            .count();
-        let (count, clean_only) = if clean > 0 {
-            (clean, true)
-        } else {
-            ((0..blocks).filter(full).count(), false)
-        };
+        let other = |d: &usize| *d != b && self.range(*d).len() == self.block;
+        let clean = |d: &usize| self.context_shares[*d] <= 0.0;
+        let clean_only = (0..blocks).filter(other).any(|d| clean(&d));
+        let eligible = |d: &usize| other(d) && (!clean_only || clean(d));
+        let count = (0..blocks).filter(eligible).count();
         if count == 0 {
             return None;
         }
-        let pick = rng.random_range(0..count);
-        (0..blocks)
-            .filter(full)
-            .filter(|&d| !clean_only || self.context_shares[d] <= 0.0)
-            .nth(pick)
+        (0..blocks).filter(eligible).nth(rng.random_range(0..count))
     }
 
     /// One PSO iteration of the sub-swarm.

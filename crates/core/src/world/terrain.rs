@@ -303,28 +303,37 @@ impl Terrain {
         n: usize,
         min_clearance: f64,
     ) -> bool {
+        let n = n.max(1);
+        self.sample_range_clears(a, b, n, (0, n), min_clearance)
+    }
+
+    /// [`Terrain::samples_clear`] over samples `i0..=i1` of `n` (recursion depth log2 n, no
+    /// allocation: it runs inside every evaluation).
+    fn sample_range_clears(
+        &self,
+        a: glam::DVec3,
+        b: glam::DVec3,
+        n: usize,
+        (i0, i1): (usize, usize),
+        min_clearance: f64,
+    ) -> bool {
         let at = |i: usize| a.lerp(b, i as f64 / n as f64);
-        let ok = |q: glam::DVec3| q.z - self.height(q.x, q.y) >= min_clearance;
-        let mut stack = vec![(0, n.max(1))];
-        while let Some((i0, i1)) = stack.pop() {
-            let (p0, p1) = (at(i0), at(i1));
-            if p0.is_finite()
-                && p1.is_finite()
-                && p0.z.min(p1.z) - min_clearance > self.max_in_rect(p0.x, p0.y, p1.x, p1.y)
-            {
-                continue;
-            }
-            if i1 - i0 <= 2 {
-                if !(i0..=i1).all(|i| ok(at(i))) {
-                    return false;
-                }
-                continue;
-            }
-            let mid = i0 + (i1 - i0) / 2;
-            stack.push((mid, i1));
-            stack.push((i0, mid));
+        let (p0, p1) = (at(i0), at(i1));
+        if p0.is_finite()
+            && p1.is_finite()
+            && p0.z.min(p1.z) - min_clearance > self.max_in_rect(p0.x, p0.y, p1.x, p1.y)
+        {
+            return true;
         }
-        true
+        if i1 - i0 <= 2 {
+            return (i0..=i1).all(|i| {
+                let q = at(i);
+                q.z - self.height(q.x, q.y) >= min_clearance
+            });
+        }
+        let mid = i0 + (i1 - i0) / 2;
+        self.sample_range_clears(a, b, n, (i0, mid), min_clearance)
+            && self.sample_range_clears(a, b, n, (mid, i1), min_clearance)
     }
 
     /// Calls `not_clear(s)` for each segment s of the polyline `points` (from `points[s]` to
