@@ -1,8 +1,12 @@
-//! Human-readable tables of an assessment (per-UAV figures, cost breakdown, violations).
+//! Human-readable tables of an assessment (per-UAV figures, cost breakdown, violations,
+//! and where outages happen out of any direct ground link).
 
 use std::fmt::Write;
 
+use swarmplan_core::cost::coverage::GroundCoverage;
 use swarmplan_core::cost::Assessment;
+use swarmplan_core::feasibility::{Violation, ViolationKind};
+use swarmplan_core::world::spec::CommRequirement;
 use swarmplan_core::world::World;
 
 /// Per-UAV table, term breakdown, feasibility and violations.
@@ -71,5 +75,82 @@ pub fn assessment(world: &World, a: &Assessment) -> String {
             if x.hard { "" } else { " (soft)" }
         );
     }
+    if let Some(note) = dead_zone_note(world, v) {
+        let _ = writeln!(s, "{note}");
+    }
     s
+}
+
+/// For a plan with hard communication violations: how much of the map has no direct ground
+/// link even at the top of the altitude band, and how many of the outages begin there
+/// (where another path at the same place cannot help, only a relay).
+fn dead_zone_note(world: &World, violations: &[Violation]) -> Option<String> {
+    if world.spec.communication.requirement != CommRequirement::Relay {
+        return None; // contact is then not about the ground
+    }
+    let outages: Vec<&Violation> = violations
+        .iter()
+        .filter(|x| x.hard && x.kind == ViolationKind::Comm)
+        .collect();
+    if outages.is_empty() {
+        return None;
+    }
+    let map = GroundCoverage::at_band_top(world);
+    let placed: Vec<[f64; 3]> = outages.iter().filter_map(|x| x.position).collect();
+    let there = placed.iter().filter(|p| !map.linked(p[0], p[1])).count();
+    Some(format!(
+        "  no direct ground link from {:.0} % of the map even at {} m AGL (nominal range {} m, line of sight; hatched in the top view): {there} of the {} outages begin there, where only a relay through another UAV keeps contact",
+        100.0 * map.dead_share(),
+        map.agl,
+        map.range,
+        placed.len()
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use swarmplan_core::cost::assess;
+    use swarmplan_core::plan::{Path, Plan};
+    use swarmplan_io::scenario::{build_world, load_spec};
+
+    /// `tiny` with a fixed radio range and both UAVs flying the straight line to UGV0 at
+    /// 60 m above the start's ground.
+    fn straight(range: f64) -> (World, Assessment) {
+        let mut loaded = load_spec("tiny").expect("built-in");
+        let c = &mut loaded.spec.communication;
+        c.requirement = CommRequirement::Relay;
+        c.range = range;
+        c.shadowing_sigma_db = 0.0;
+        let world = build_world(&loaded, None).expect("world");
+        let path = |i: usize| Path {
+            waypoints: vec![world.start(i), world.goal],
+        };
+        let plan = Plan {
+            pace: 1.0,
+            delays: Vec::new(),
+            uavs: vec![path(0), path(1)],
+        };
+        let a = assess(&world, &plan, true);
+        (world, a)
+    }
+
+    #[test]
+    fn outages_where_no_ground_link_exists_are_said_to_need_a_relay() {
+        // 100 m of range: out of reach of both ground nodes for about 8 s mid-way (5 s
+        // tolerated), and at the top of the band (80 m) in reach only within about 60 m
+        // horizontally of either.
+        let (world, a) = straight(100.0);
+        let text = assessment(&world, &a);
+        assert!(text.contains("out of contact"), "{text}");
+        assert!(
+            text.contains("even at 80 m AGL (nominal range 100 m")
+                && text.contains("2 of the 2 outages begin there"),
+            "{text}"
+        );
+        // In range all the way: no outage, no note.
+        let (world, a) = straight(2000.0);
+        let text = assessment(&world, &a);
+        assert!(!text.contains("no direct ground link"), "{text}");
+    }
 }

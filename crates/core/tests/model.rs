@@ -893,3 +893,37 @@ fn a_nudge_moves_one_free_waypoint_of_one_uav_and_keeps_the_rest() {
         moved_by.len()
     );
 }
+
+#[test]
+fn the_ground_coverage_map_is_dead_behind_a_ridge_and_beyond_the_range() {
+    use swarmplan_core::cost::coverage::{direct_ground_link, GroundCoverage};
+    // A 500 m ridge across the map at x in [240, 260]; the station at x = 100, UGV0 at
+    // x = 900; range 300 m. Between them a UAV at 150 m above ground sees the station up to
+    // the ridge, then nothing until it comes within 300 m of UGV0 (x >= 600).
+    let nx = 101;
+    let h: Vec<f64> = (0..nx)
+        .flat_map(|_| (0..nx).map(|i| if (24..=26).contains(&i) { 500.0 } else { 0.0 }))
+        .collect();
+    let t = Terrain::new(nx, nx, (0.0, 0.0), (10.0, 10.0), h, Sampling::Bilinear).unwrap();
+    let mut s = comm_spec(&[[100.0, 500.0, 150.0]], [900.0, 500.0, 150.0]);
+    s.map.z_agl = [100.0, 150.0];
+    let w = World::new(s, t).unwrap();
+    let map = GroundCoverage::at_band_top(&w);
+    assert_eq!(map.agl, 150.0);
+    assert_eq!(map.range, 300.0);
+    let at = |x: f64| map.linked(x, 500.0);
+    assert!(at(150.0) && at(220.0), "in front of the ridge, in range");
+    assert!(
+        !at(300.0) && !at(450.0) && !at(590.0),
+        "behind it, out of UGV0's range"
+    );
+    assert!(at(650.0) && at(880.0), "near UGV0");
+    // The cells agree with the single-point test at their centres.
+    for ([x0, y0, x1, y1], linked) in map.cells() {
+        let (x, y) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+        let p = DVec3::new(x, y, w.terrain.height(x, y) + 150.0);
+        assert_eq!(linked, direct_ground_link(&w, p), "cell at ({x}, {y})");
+    }
+    let dead = map.dead_share();
+    assert!((0.2..0.8).contains(&dead), "dead share {dead}");
+}

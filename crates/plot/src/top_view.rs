@@ -3,7 +3,10 @@
 //! r + 11 size), interference disks, ground nodes, each UAV's path with its waypoints, and a
 //! mark wherever a UAV was out of contact (sampled at every communication step) with the
 //! times of each outage, and at its start how long a UAV with a departure delay hovers there
-//! ("UAV 4 waits 11.6 s"). A colour bar and the legend sit in a panel to the right.
+//! ("UAV 4 waits 11.6 s"). When a UAV is out of contact, the places where no UAV links to
+//! the ground directly even at the top of the altitude band are hatched
+//! ([`GroundCoverage`]): an outage there needs a relay, not another path. A colour bar and
+//! the legend sit in a panel to the right.
 //!
 //! One metre east is one metre north on screen: the chart's margins are computed so that the
 //! plotting area has the map's aspect ratio ([`equal_aspect_margins`]).
@@ -12,8 +15,10 @@ use plotters::coord::Shift;
 use plotters::element::BitMapElement;
 use plotters::prelude::*;
 use swarmplan_core::cost::comm::Contact;
+use swarmplan_core::cost::coverage::GroundCoverage;
 use swarmplan_core::plan::Plan;
 use swarmplan_core::timing::TimedPlan;
+use swarmplan_core::world::spec::CommRequirement;
 use swarmplan_core::world::World;
 
 use crate::axis::{format_value, Axis};
@@ -47,6 +52,9 @@ struct TopView<'a> {
     title: &'a str,
     trace: ContactTrace,
     marks: ViolationMarks,
+    /// Where no direct ground link exists at the top of the altitude band, when some UAV is
+    /// out of contact (else not computed, and nothing hatched).
+    dead: Option<GroundCoverage>,
     x: (f64, f64),
     y: (f64, f64),
     /// Terrain height range of the colour map.
@@ -85,11 +93,16 @@ impl<'a> TopView<'a> {
             .into_iter()
             .map(|l| (l, grid.contour(l)))
             .collect();
+        let trace = ContactTrace::new(world, plan);
+        // Under `relay` contact means a way to the ground; under `neighbour` it does not.
+        let relay = world.spec.communication.requirement == CommRequirement::Relay;
+        let out = relay && (0..trace.uav_count()).any(|i| trace.seconds(i, Contact::Out) > 0.0);
         Self {
             world,
             plan,
             title,
-            trace: ContactTrace::new(world, plan),
+            dead: out.then(|| GroundCoverage::at_band_top(world)),
+            trace,
             marks: ViolationMarks::new(world, plan),
             x,
             y,
@@ -126,7 +139,19 @@ impl<'a> TopView<'a> {
                 let n = glam::DVec3::new(-dzdx, -dzdy, 1.0).normalize();
                 let lambert = n.dot(light).max(0.0);
                 let f = (1.0 + 0.6 * (lambert - light.z)).clamp(0.7, 1.15);
-                let c = style::shade(style::terrain_colour((at(i, j) - self.h.0) / span), f);
+                let mut c = style::shade(style::terrain_colour((at(i, j) - self.h.0) / span), f);
+                if let Some(dead) = &self.dead {
+                    let px = self.x.0 + (i as f64 + 0.5) * sx;
+                    let py = self.y.1 - (j as f64 + 0.5) * sy;
+                    if !dead.linked(px, py) {
+                        // Hatched: grey stripes rising to the right over a dimmed relief.
+                        c = if (i + j) % 9 < 3 {
+                            style::DEAD_HATCH
+                        } else {
+                            style::shade(c, 0.8)
+                        };
+                    }
+                }
                 buf.extend_from_slice(&[c.0, c.1, c.2]);
             }
         }
@@ -145,6 +170,13 @@ impl<'a> TopView<'a> {
             RGBColor(60, 60, 60),
         ));
         e.extend(self.marks.legend_entries(s));
+        if let Some(dead) = &self.dead {
+            e.push(Entry::patch(
+                format!("no ground link at {} m AGL", format_value(dead.agl)),
+                style::DEAD_HATCH.mix(0.8),
+                style::DEAD_HATCH,
+            ));
+        }
         e.push(Entry::patch(
             "threat: r + size",
             style::THREAT.mix(0.35),

@@ -375,3 +375,43 @@ fn an_infeasible_plan_has_its_violations_marked() {
         );
     }
 }
+
+#[test]
+fn where_no_ground_link_exists_is_hatched_when_a_uav_is_out_of_contact() {
+    let dir = tempfile::tempdir().unwrap();
+    // `tiny` with a fixed range and both UAVs on the straight line to UGV0.
+    let world = |range: f64| {
+        let mut loaded = load_spec("tiny").unwrap();
+        let c = &mut loaded.spec.communication;
+        c.requirement = swarmplan_core::world::spec::CommRequirement::Relay;
+        c.range = range;
+        c.shadowing_sigma_db = 0.0;
+        build_world(&loaded, None).unwrap()
+    };
+    let straight = |w: &World| Plan {
+        pace: 1.0,
+        delays: Vec::new(),
+        uavs: (0..2)
+            .map(|i| swarmplan_core::plan::Path {
+                waypoints: vec![w.start(i), w.goal],
+            })
+            .collect(),
+    };
+    // The stripes' colour (style::DEAD_HATCH), and the legend entry.
+    let hatched = |name: &str, range: f64| {
+        let w = world(range);
+        let out = top_view(&w, &straight(&w), "t", dir.path().join(name)).unwrap();
+        let img = image::open(&out.png).unwrap().to_rgb8();
+        let stripes = img.pixels().filter(|p| p.0 == [70, 70, 80]).count();
+        let svg = std::fs::read_to_string(&out.svg).unwrap();
+        (stripes, svg.contains("no ground link at 80 m AGL"))
+    };
+    // 100 m of range: out of contact mid-way, and most of the map out of any ground link.
+    let (stripes, legend) = hatched("short", 100.0);
+    assert!(
+        stripes > 5000 && legend,
+        "{stripes} stripe pixels, legend {legend}"
+    );
+    // In range everywhere: nothing hatched, no legend entry.
+    assert_eq!(hatched("long", 2000.0), (0, false));
+}

@@ -12,6 +12,7 @@
 
 pub mod clearance;
 pub mod comm;
+pub mod coverage;
 pub mod energy;
 pub mod kinematics;
 pub mod proximity;
