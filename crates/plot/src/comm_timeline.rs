@@ -1,7 +1,8 @@
 //! Communication over the mission, in two panels on one time axis. Top: one row per UAV,
 //! coloured by its status at every communication step (in direct contact with a ground
 //! node, relayed through other UAVs, out of contact), with a thin bar under the row while
-//! the UAV is inside an active interference disk. Bottom: the range R(t) after shadowing,
+//! the UAV is inside an active interference disk and one over it while it waits at its start
+//! before departing (a departure delay). Bottom: the range R(t) after shadowing,
 //! the nominal range R0, and the shrunken range of links with an end inside each window.
 //! Interference windows are shaded in both panels. A side panel holds the legend and each
 //! UAV's seconds relayed and out of contact.
@@ -11,6 +12,7 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use swarmplan_core::cost::comm::Contact;
 use swarmplan_core::plan::Plan;
+use swarmplan_core::timing::TimedPlan;
 use swarmplan_core::world::channel::loss_factor;
 use swarmplan_core::world::World;
 
@@ -32,6 +34,11 @@ pub fn comm_timeline(
             world,
             title,
             trace: ContactTrace::new(world, plan),
+            departures: TimedPlan::flown(world, plan)
+                .paths
+                .iter()
+                .map(|p| p.depart)
+                .collect(),
         },
         &out.into(),
     )
@@ -41,6 +48,8 @@ struct CommTimeline<'a> {
     world: &'a World,
     title: &'a str,
     trace: ContactTrace,
+    /// Per UAV, when it leaves its start (0 without a departure delay).
+    departures: Vec<f64>,
 }
 
 fn status_colour(c: Contact) -> RGBColor {
@@ -150,6 +159,14 @@ impl CommTimeline<'_> {
                     status_colour(r.status).filled(),
                 )
             }))?;
+            // Over the row: while the UAV waits at its start.
+            let depart = self.departures.get(i).copied().unwrap_or(0.0);
+            if depart > 0.0 && depart.is_finite() {
+                chart.draw_series(std::iter::once(Rectangle::new(
+                    [(0.0, y + 0.34), (depart.min(t_end), y + 0.42)],
+                    style::WAITING.filled(),
+                )))?;
+            }
             // Under the row: while the UAV is inside an active interference disk.
             let ch = &self.world.channel;
             let inside: Vec<bool> = self
@@ -266,6 +283,13 @@ impl CommTimeline<'_> {
             Entry::dashed("R(t) in a window", style::INTERFERENCE, s.px(2.5)),
             Entry::Heading("seconds relayed / out".into()),
         ];
+        if self.departures.iter().any(|d| *d > 0.0) {
+            // Right after the interference disk's bar, the other thin bar of a row.
+            e.insert(
+                5,
+                Entry::line("waiting at its start", style::WAITING, s.px(5.0)),
+            );
+        }
         for i in 0..self.trace.uav_count() {
             e.push(Entry::Note(format!(
                 "UAV {}: {} s / {} s",

@@ -128,6 +128,8 @@ pub(crate) fn series_colour(i: usize) -> RGBColor {
 pub(crate) const THREAT: RGBColor = RGBColor(200, 0, 0);
 pub(crate) const THREAT_DARK: RGBColor = RGBColor(140, 0, 0);
 pub(crate) const INTERFERENCE: RGBColor = RGBColor(120, 60, 200);
+/// A UAV waiting at its start before departing (communication timeline).
+pub(crate) const WAITING: RGBColor = RGBColor(110, 110, 110);
 /// Stripes of the places without a direct ground link (top view).
 pub(crate) const DEAD_HATCH: RGBColor = RGBColor(70, 70, 80);
 pub(crate) const DIRECT: RGBColor = RGBColor(60, 170, 80);

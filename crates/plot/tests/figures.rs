@@ -415,3 +415,25 @@ fn where_no_ground_link_exists_is_hatched_when_a_uav_is_out_of_contact() {
     // In range everywhere: nothing hatched, no legend entry.
     assert_eq!(hatched("long", 2000.0), (0, false));
 }
+
+#[test]
+fn the_communication_timeline_shows_when_a_uav_waits_at_its_start() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = tiny();
+    let mut p = plan(&world);
+    p.delays = vec![0.0; p.uavs.len()];
+    p.delays[1] = 0.2;
+    // The bar's grey (style::WAITING), and its legend entry, only with a delay.
+    let waiting = |name: &str, p: &Plan| {
+        let w = comm_timeline(&world, p, "t", dir.path().join(name)).unwrap();
+        let img = image::open(&w.png).unwrap().to_rgb8();
+        let grey = img.pixels().filter(|q| q.0 == [110, 110, 110]).count();
+        let svg = std::fs::read_to_string(&w.svg).unwrap();
+        (grey, svg.contains("waiting at its start"))
+    };
+    let (grey, legend) = waiting("delayed", &p);
+    assert!(grey > 1000 && legend, "{grey} bar pixels, legend {legend}");
+    // (A few pixels of that grey come from anti-aliased text.)
+    let (grey, legend) = waiting("plain", &plan(&world));
+    assert!(grey < 100 && !legend, "{grey} bar pixels, legend {legend}");
+}
