@@ -308,15 +308,20 @@ fn a_relay_chain_connects_a_uav_out_of_direct_range() {
     assert_eq!(c, vec![Contact::Relayed, Contact::Relayed]);
 }
 
-#[test]
-fn a_uav_behind_a_ridge_has_no_line_of_sight() {
-    // A 500 m ridge across the map at x in [240, 260], between the station (x = 100) and
-    // a UAV at x = 350: 250 m away, in range, but hidden.
+/// 1000 x 1000 m of flat ground at height 0 with a 500 m ridge across it at x in [240, 260].
+fn ridge() -> Terrain {
     let nx = 101;
     let h: Vec<f64> = (0..nx)
         .flat_map(|_| (0..nx).map(|i| if (24..=26).contains(&i) { 500.0 } else { 0.0 }))
         .collect();
-    let t = Terrain::new(nx, nx, (0.0, 0.0), (10.0, 10.0), h, Sampling::Bilinear).unwrap();
+    Terrain::new(nx, nx, (0.0, 0.0), (10.0, 10.0), h, Sampling::Bilinear).unwrap()
+}
+
+#[test]
+fn a_uav_behind_a_ridge_has_no_line_of_sight() {
+    // A 500 m ridge across the map at x in [240, 260], between the station (x = 100) and
+    // a UAV at x = 350: 250 m away, in range, but hidden.
+    let t = ridge();
     let mut s = comm_spec(&[[100.0, 500.0, 150.0]], [900.0, 500.0, 150.0]);
     let w = World::new(s.clone(), t.clone()).unwrap();
     let before = DVec3::new(200.0, 500.0, 150.0);
@@ -900,11 +905,7 @@ fn the_ground_coverage_map_is_dead_behind_a_ridge_and_beyond_the_range() {
     // A 500 m ridge across the map at x in [240, 260]; the station at x = 100, UGV0 at
     // x = 900; range 300 m. Between them a UAV at 150 m above ground sees the station up to
     // the ridge, then nothing until it comes within 300 m of UGV0 (x >= 600).
-    let nx = 101;
-    let h: Vec<f64> = (0..nx)
-        .flat_map(|_| (0..nx).map(|i| if (24..=26).contains(&i) { 500.0 } else { 0.0 }))
-        .collect();
-    let t = Terrain::new(nx, nx, (0.0, 0.0), (10.0, 10.0), h, Sampling::Bilinear).unwrap();
+    let t = ridge();
     let mut s = comm_spec(&[[100.0, 500.0, 150.0]], [900.0, 500.0, 150.0]);
     s.map.z_agl = [100.0, 150.0];
     let w = World::new(s, t).unwrap();
