@@ -98,12 +98,22 @@ fn dead_zone_note(world: &World, violations: &[Violation]) -> Option<String> {
     let map = GroundCoverage::at_band_top(world);
     let placed: Vec<[f64; 3]> = outages.iter().filter_map(|x| x.position).collect();
     let there = placed.iter().filter(|p| !map.linked(p[0], p[1])).count();
+    let consequence = if there == 0 {
+        format!(
+            "none of the {} outages begins there; they come from the channel's dips in time (shadowing, interference), which a relay or other timing can bridge",
+            placed.len()
+        )
+    } else {
+        format!(
+            "{there} of the {} outages begin there, where only a relay through another UAV keeps contact",
+            placed.len()
+        )
+    };
     Some(format!(
-        "  no direct ground link from {:.0} % of the map even at {} m AGL (nominal range {} m, line of sight; hatched in the top view): {there} of the {} outages begin there, where only a relay through another UAV keeps contact",
+        "  no direct ground link from {:.0} % of the map even at {} m AGL (nominal range {} m, line of sight; hatched in the top view): {consequence}",
         100.0 * map.dead_share(),
         map.agl,
         map.range,
-        placed.len()
     ))
 }
 
@@ -117,11 +127,20 @@ mod tests {
     /// `tiny` with a fixed radio range and both UAVs flying the straight line to UGV0 at
     /// 60 m above the start's ground.
     fn straight(range: f64) -> (World, Assessment) {
+        straight_with(range, &[])
+    }
+
+    /// [`straight`] with interference windows.
+    fn straight_with(
+        range: f64,
+        windows: &[swarmplan_core::world::spec::InterferenceSpec],
+    ) -> (World, Assessment) {
         let mut loaded = load_spec("tiny").expect("built-in");
         let c = &mut loaded.spec.communication;
         c.requirement = CommRequirement::Relay;
         c.range = range;
         c.shadowing_sigma_db = 0.0;
+        c.interference = windows.to_vec();
         let world = build_world(&loaded, None).expect("world");
         let path = |i: usize| Path {
             waypoints: vec![world.start(i), world.goal],
@@ -152,5 +171,19 @@ mod tests {
         let (world, a) = straight(2000.0);
         let text = assessment(&world, &a);
         assert!(!text.contains("no direct ground link"), "{text}");
+        // In range everywhere, but a 60 dB window over the whole map from 2 to 12 s: the
+        // outages come from the channel in time, not from the place.
+        let window = swarmplan_core::world::spec::InterferenceSpec {
+            time: [2.0, 12.0],
+            center: [150.0, 100.0],
+            radius: 400.0,
+            loss_db: 60.0,
+        };
+        let (world, a) = straight_with(2000.0, &[window]);
+        let text = assessment(&world, &a);
+        assert!(
+            text.contains("none of the 2 outages begins there"),
+            "{text}"
+        );
     }
 }
