@@ -110,7 +110,7 @@ fn dead_zone_note(world: &World, violations: &[Violation]) -> Option<String> {
         )
     };
     Some(format!(
-        "  no direct ground link from {:.0} % of the map even at {} m AGL (nominal range {} m, line of sight; hatched in the top view): {consequence}",
+        "  no direct ground link from {:.0} % of the map even at {} m AGL (nominal range {} m, line of sight; the top view of `plan` or `plot` hatches it): {consequence}",
         100.0 * map.dead_share(),
         map.agl,
         map.range,

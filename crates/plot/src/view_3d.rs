@@ -1,6 +1,7 @@
 //! The plan in 3-D: a coarse shaded terrain mesh, the threat cylinders as wireframes, and
 //! each UAV's path at absolute altitude (waypoint z above ground plus the ground height),
-//! with its shadow draped on the terrain to make the 3-D position readable.
+//! with its shadow draped on the terrain to make the 3-D position readable. The legend says
+//! how long each UAV with a departure delay waits at its start.
 //!
 //! Threat cylinders are of unbounded height in the model; the spec's z is a drawing height
 //! only. Cylinders are drawn solid from the ground up to z above the ground at their axis
@@ -160,6 +161,15 @@ impl<'a> View3d<'a> {
         }
         e.extend(self.marks.legend_entries(s));
         e.push(Entry::Note(String::new()));
+        // Departure delays: a UAV hovering at its start is one point here, so say it.
+        for (i, p) in self.flown.paths.iter().enumerate() {
+            if p.depart > 0.0 && p.depart.is_finite() {
+                e.push(Entry::Note(format!(
+                    "UAV {i} waits {} s at its start",
+                    format_value(p.depart)
+                )));
+            }
+        }
         e.push(Entry::Note("x: east, m; y: north, m".into()));
         e.push(Entry::Note("vertical: altitude above datum, m".into()));
         e.push(Entry::Note(format!(

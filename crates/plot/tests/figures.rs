@@ -340,6 +340,10 @@ fn a_uav_that_waits_at_its_start_is_labelled_there() {
     assert!(!svg.contains("UAV 0 waits"), "a UAV without delay labelled");
     let w = top_view(&world, &plan(&world), "t", dir.path().join("plain")).unwrap();
     assert!(!std::fs::read_to_string(&w.svg).unwrap().contains("waits"));
+    // The 3-D view says it in its legend.
+    let w = view_3d(&world, &p, "t", dir.path().join("3d")).unwrap();
+    let svg = std::fs::read_to_string(&w.svg).unwrap();
+    assert!(svg.contains("UAV 1 waits") && !svg.contains("UAV 0 waits"));
 }
 
 #[test]
