@@ -9,6 +9,7 @@ use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2}
 use pyo3::prelude::*;
 use rayon::prelude::*;
 use swarmplan_core::cost::assess;
+use swarmplan_core::cost::coverage::GroundCoverage;
 use swarmplan_core::encoding::{EncodingKind, InitKind};
 use swarmplan_core::method::Method;
 use swarmplan_core::plan::Plan;
@@ -277,6 +278,33 @@ impl Problem {
     fn evaluate_plan(&self, path: PathBuf, allow_other_terrain: bool) -> PyResult<String> {
         let plan = self.read_plan(&path, allow_other_terrain)?;
         Self::json(&AssessmentReport::of(&assess(&self.world, &plan, true)))
+    }
+
+    /// Where a UAV `agl` metres above ground (default: the top of the altitude band) links
+    /// directly to a ground node (nominal range, line of sight): the flags (rows along y),
+    /// the first cell's corner (x, y), the cell size and the height used.
+    #[pyo3(signature = (agl=None))]
+    #[allow(clippy::type_complexity)]
+    fn ground_coverage<'py>(
+        &self,
+        py: Python<'py>,
+        agl: Option<f64>,
+    ) -> PyResult<(Bound<'py, PyArray2<bool>>, (f64, f64), f64, f64)> {
+        let map = match agl {
+            None => GroundCoverage::at_band_top(&self.world),
+            Some(h) if h.is_finite() && h >= 0.0 => {
+                let base = GroundCoverage::at_band_top(&self.world);
+                GroundCoverage::new(&self.world, h, base.cell())
+            }
+            Some(h) => {
+                return Err(bad(format!(
+                    "agl: expected a finite height above ground >= 0 m, got {h}"
+                )))
+            }
+        };
+        let (nx, ny) = map.shape();
+        let a = Array2::from_shape_vec((ny, nx), map.flags().to_vec()).map_err(to_py)?;
+        Ok((a.into_pyarray(py), map.origin(), map.cell(), map.agl))
     }
 
     /// The decision vector nearest to a plan file's plan in this encoding.

@@ -221,6 +221,26 @@ class Problem:
         """The decision vector nearest to a plan file's plan in this encoding."""
         return self._p.encode_plan(os.fspath(path), allow_other_terrain)
 
+    def ground_coverage(self, agl: Optional[float] = None) -> Dict[str, Any]:
+        """Where a UAV ``agl`` metres above ground (default: the top of the altitude band)
+        has a direct link to a ground node under the nominal range and the line of sight,
+        as ``plan`` and the top view report it (docs/model.md, "Where no path can keep a
+        direct ground link").
+
+        Returns a dict: ``linked`` (bool array, rows along y from the map's y minimum,
+        columns along x), ``origin`` ((x, y) of the first cell's corner), ``cell`` (metres),
+        ``agl`` (metres) and ``dead_share`` (the share of cells without a link).
+        """
+        linked, origin, cell, height = self._p.ground_coverage(agl)
+        linked.setflags(write=False)
+        return {
+            "linked": linked,
+            "origin": origin,
+            "cell": cell,
+            "agl": height,
+            "dead_share": float(1.0 - linked.mean()) if linked.size else 0.0,
+        }
+
 
 def plan(
     scenario: PathLike = "paper-case1",

@@ -108,6 +108,24 @@ impl GroundCoverage {
         self.cell
     }
 
+    /// Cells along x and along y.
+    #[must_use]
+    pub fn shape(&self) -> (usize, usize) {
+        (self.nx, self.ny)
+    }
+
+    /// The (x, y) corner of the first cell: the map box's minimum.
+    #[must_use]
+    pub fn origin(&self) -> (f64, f64) {
+        (self.x0, self.y0)
+    }
+
+    /// The flags row by row (row j at y0 + j cell, column i at x0 + i cell).
+    #[must_use]
+    pub fn flags(&self) -> &[bool] {
+        &self.linked
+    }
+
     /// Every cell as (x0, y0, x1, y1, linked), row by row, for figures.
     pub fn cells(&self) -> impl Iterator<Item = ([f64; 4], bool)> + '_ {
         self.linked.iter().enumerate().map(|(k, l)| {
