@@ -282,19 +282,19 @@ impl Problem {
 
     /// Where a UAV `agl` metres above ground (default: the top of the altitude band) links
     /// directly to a ground node (nominal range, line of sight): the flags (rows along y),
-    /// the first cell's corner (x, y), the cell size and the height used.
+    /// the first cell's corner (x, y), the cell size, the height used and the share of cells
+    /// without a link.
     #[pyo3(signature = (agl=None))]
     #[allow(clippy::type_complexity)]
     fn ground_coverage<'py>(
         &self,
         py: Python<'py>,
         agl: Option<f64>,
-    ) -> PyResult<(Bound<'py, PyArray2<bool>>, (f64, f64), f64, f64)> {
+    ) -> PyResult<(Bound<'py, PyArray2<bool>>, (f64, f64), f64, f64, f64)> {
         let map = match agl {
             None => GroundCoverage::at_band_top(&self.world),
             Some(h) if h.is_finite() && h >= 0.0 => {
-                let base = GroundCoverage::at_band_top(&self.world);
-                GroundCoverage::new(&self.world, h, base.cell())
+                GroundCoverage::new(&self.world, h, GroundCoverage::default_cell(&self.world))
             }
             Some(h) => {
                 return Err(bad(format!(
@@ -304,7 +304,13 @@ impl Problem {
         };
         let (nx, ny) = map.shape();
         let a = Array2::from_shape_vec((ny, nx), map.flags().to_vec()).map_err(to_py)?;
-        Ok((a.into_pyarray(py), map.origin(), map.cell(), map.agl))
+        Ok((
+            a.into_pyarray(py),
+            map.origin(),
+            map.cell(),
+            map.agl,
+            map.dead_share(),
+        ))
     }
 
     /// The decision vector nearest to a plan file's plan in this encoding.

@@ -231,14 +231,14 @@ class Problem:
         columns along x), ``origin`` ((x, y) of the first cell's corner), ``cell`` (metres),
         ``agl`` (metres) and ``dead_share`` (the share of cells without a link).
         """
-        linked, origin, cell, height = self._p.ground_coverage(agl)
+        linked, origin, cell, height, dead_share = self._p.ground_coverage(agl)
         linked.setflags(write=False)
         return {
             "linked": linked,
             "origin": origin,
             "cell": cell,
             "agl": height,
-            "dead_share": float(1.0 - linked.mean()) if linked.size else 0.0,
+            "dead_share": dead_share,
         }
 
 

@@ -72,12 +72,17 @@ impl GroundCoverage {
     }
 
     /// The map at the top of the altitude band (where the line of sight is best), in cells
-    /// of 10 m or the terrain's cell if coarser.
+    /// of [`GroundCoverage::default_cell`].
     #[must_use]
     pub fn at_band_top(world: &World) -> Self {
+        Self::new(world, world.spec.map.z_agl[1], Self::default_cell(world))
+    }
+
+    /// The cell size reports and figures use: 10 m, or the terrain's cell if coarser.
+    #[must_use]
+    pub fn default_cell(world: &World) -> f64 {
         let (dx, dy) = world.terrain.cell();
-        let cell = dx.max(dy).max(10.0);
-        Self::new(world, world.spec.map.z_agl[1], cell)
+        dx.max(dy).max(10.0)
     }
 
     /// Whether the cell holding (x, y) links to the ground; points outside the box take the
