@@ -1,11 +1,12 @@
 //! `plan()`: one planning run, the same run as the CLI's `plan` (same request, same
-//! `run_with_uav_trace`), so a seed gives the CLI's plan.
+//! `run_attempts`), so a seed gives the CLI's plan.
 
 use std::path::PathBuf;
 
 use pyo3::prelude::*;
 use serde_json::json;
-use swarmplan_core::run::{run_with_uav_trace, RunRequest};
+use swarmplan_core::attempts::{run_attempts, MAX_ATTEMPTS};
+use swarmplan_core::run::RunRequest;
 use swarmplan_io::artifact::{ArtifactFiles, RunArtifact};
 use swarmplan_io::plan_file::plan_file;
 
@@ -19,7 +20,7 @@ use crate::{args, scenario};
 #[pyo3(signature = (
     scenario="paper-case1", method="swarmplan", seed=None, evaluations=None, iterations=None,
     population=None, params=None, terrain=None, profile=None, time_limit=None,
-    until_feasible=false
+    until_feasible=false, attempts=1
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn plan(
@@ -35,7 +36,14 @@ pub fn plan(
     profile: Option<&str>,
     time_limit: Option<f64>,
     until_feasible: bool,
+    attempts: i128,
 ) -> PyResult<String> {
+    let attempts: usize = args::positive("attempts", attempts)?;
+    if attempts > MAX_ATTEMPTS {
+        return Err(bad(format!(
+            "attempts: expected 1 to {MAX_ATTEMPTS}, got {attempts}"
+        )));
+    }
     let method = args::method(method)?;
     let params = args::params(params, population)?;
     let loaded = scenario::load(scenario, terrain, profile)?;
@@ -62,14 +70,18 @@ pub fn plan(
             .transpose()?
             .unwrap_or(world.spec.planning.seed),
     };
-    let (result, uav_trace) = py.detach(|| run_with_uav_trace(world, &req, &mut |_| {}));
-    let artifact = RunArtifact::new(
+    let made = py.detach(|| run_attempts(world, &req, attempts, &mut |_, _| {}, &mut |_| {}));
+    let (result, uav_trace) = (made.result, made.uav_trace);
+    let mut artifact = RunArtifact::new(
         world,
         &result,
         req.budget,
         req.params,
         ArtifactFiles::default(),
     );
+    if attempts > 1 {
+        artifact.attempts = made.records;
+    }
     let n = world.uav_count().max(1) as f64;
     let convergence: Vec<_> = result
         .outcome

@@ -255,8 +255,13 @@ def plan(
     profile: Optional[str] = None,
     time_limit: Optional[float] = None,
     until_feasible: bool = False,
+    attempts: int = 1,
 ) -> Dict[str, Any]:
     """Plans a scenario: the run ``swarmplan plan`` makes with the same arguments.
+
+    ``attempts=K`` is ``plan --attempts K``: up to K runs from derived seeds, stopping at the
+    first feasible plan (each spends the whole budget); ``run["attempts"]`` lists them and
+    ``run["seed"]`` is the seed of the plan kept.
 
     The default budget is the method's (38,700 evaluations for ``swarmplan``, 200
     iterations for the paper's methods); the default seed is the scenario's.
@@ -280,6 +285,7 @@ def plan(
             profile,
             time_limit,
             until_feasible,
+            attempts,
         )
     )
     _warn(out["notes"])

@@ -63,6 +63,7 @@ def plan(
     profile: Optional[str] = ...,
     time_limit: Optional[float] = ...,
     until_feasible: bool = ...,
+    attempts: int = ...,
 ) -> str: ...
 def bench(
     out: str,

@@ -60,3 +60,20 @@ def test_bench_writes_a_resumable_folder_and_a_frame(tmp_path):
     frame = swarmplan.bench(["tiny"], ["gwo"], runs=2, evaluations=300, as_frame=True)
     assert isinstance(frame, pd.DataFrame) and len(frame) == 2
     assert {"method", "cost_per_uav", "feasible", "seed"} <= set(frame.columns)
+
+
+def test_plan_attempts_equal_the_cli_attempts(cli, tmp_path):
+    out = tmp_path / "att"
+    run_cli(cli, "plan", "--scenario", "paper-case2", "--evaluations", "300", "--attempts", "3",
+            "--no-figures", "--out", str(out))
+    want_run = json.loads((out / "run.json").read_text())
+    got = swarmplan.plan("paper-case2", evaluations=300, attempts=3)
+    def strip(records):  # wall times differ between two runs
+        return [{k: v for k, v in r.items() if k != "seconds"} for r in records]
+
+    assert strip(got["run"]["attempts"]) == strip(want_run["attempts"])
+    assert got["run"]["seed"] == want_run["seed"]
+    assert got["plan"] == json.loads((out / "plan.json").read_text())
+    assert "attempts" not in swarmplan.plan("tiny", evaluations=300)["run"]
+    with pytest.raises(swarmplan.SwarmplanError, match="attempts"):
+        swarmplan.plan("tiny", attempts=0)

@@ -523,3 +523,53 @@ fn an_error_says_its_cause_once() {
     );
     assert!(stderr.contains("bad.toml"), "{stderr}");
 }
+
+#[test]
+fn attempts_are_printed_stored_and_the_kept_one_repeats_by_its_seed() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = |out: &str| {
+        let mut c = swarmplan();
+        c.args([
+            "plan",
+            "--scenario",
+            "paper-case2",
+            "--evaluations",
+            "300",
+            "--no-figures",
+        ])
+        .arg("--out")
+        .arg(dir.path().join(out));
+        c
+    };
+    let out = args("a").args(["--attempts", "3"]).assert().success();
+    let stdout = String::from_utf8_lossy(&out.get_output().stdout).to_string();
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).to_string();
+    assert!(stderr.contains("up to 3 attempts"), "{stderr}");
+    assert!(stderr.contains("attempt 1 of 3, seed 1:"), "{stderr}");
+    assert!(stdout.contains("kept attempt "), "{stdout}");
+    let run: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.path().join("a/run.json")).unwrap()).unwrap();
+    let records = run["attempts"].as_array().unwrap();
+    assert!((1..=3).contains(&records.len()), "{records:?}");
+    assert_eq!(records[0]["seed"], 1);
+    let kept: Vec<&serde_json::Value> = records
+        .iter()
+        .filter(|r| r["seed"] == run["seed"])
+        .collect();
+    assert_eq!(kept.len(), 1, "{run}");
+    let seed = run["seed"].as_u64().unwrap().to_string();
+    // Alone, by its seed: the same plan file.
+    args("b").args(["--seed", &seed]).assert().success();
+    let plan = |d: &str| std::fs::read_to_string(dir.path().join(d).join("plan.json")).unwrap();
+    assert_eq!(plan("a"), plan("b"));
+    let alone: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.path().join("b/run.json")).unwrap()).unwrap();
+    assert!(
+        alone.get("attempts").is_none(),
+        "a single run stores no attempts"
+    );
+    args("c").args(["--attempts", "0"]).assert().code(2).stderr(
+        predicate::str::contains("--attempts")
+            .and(predicate::str::contains("expected 1 to 1000, got 0")),
+    );
+}

@@ -11,6 +11,7 @@
 //! - [`optim`]: the optimizers and the solve loop;
 //! - [`method`]: a method = optimizer + encoding + initialisation, and the named presets.
 
+pub mod attempts;
 pub mod cost;
 pub mod encoding;
 pub mod feasibility;

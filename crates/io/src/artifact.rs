@@ -10,6 +10,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
+use swarmplan_core::attempts::AttemptRecord;
 use swarmplan_core::cost::Assessment;
 use swarmplan_core::encoding::{EncodingKind, InitKind};
 use swarmplan_core::feasibility::Violation;
@@ -153,6 +154,10 @@ pub struct RunArtifact {
     pub seconds: f64,
     pub report: AssessmentReport,
     pub files: ArtifactFiles,
+    /// Every attempt of `plan --attempts K` (K > 1), in order; the plan is the one of
+    /// `seed`. Empty (and not written) for a single run.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub attempts: Vec<AttemptRecord>,
 }
 
 impl RunArtifact {
@@ -181,6 +186,7 @@ impl RunArtifact {
             seconds: result.seconds,
             report: AssessmentReport::of(&result.assessment),
             files,
+            attempts: Vec::new(),
         }
     }
 

@@ -7,10 +7,11 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use clap::Args;
+use swarmplan_core::attempts::{run_attempts, MAX_ATTEMPTS};
 use swarmplan_core::encoding::{EncodingKind, InitKind};
 use swarmplan_core::method::Method;
 use swarmplan_core::optim::{Budget, OptimizerParams};
-use swarmplan_core::run::{run_with_uav_trace, RunRequest};
+use swarmplan_core::run::RunRequest;
 use swarmplan_io::artifact::{ArtifactFiles, RunArtifact};
 use swarmplan_io::atomic::write_atomic;
 use swarmplan_io::plan_file::plan_file;
@@ -68,6 +69,24 @@ pub struct PlanArgs {
     /// Stop at the first feasible plan instead of improving it within the budget.
     #[arg(long)]
     pub until_feasible: bool,
+    /// Run again from further seeds, up to this many runs in all, until a plan is feasible;
+    /// keep the first feasible plan, or the least violating one. Each attempt spends the
+    /// whole budget (more evaluations, not a better method; `--time-limit` bounds all of
+    /// them together), and every attempt's seed is printed and stored in run.json.
+    #[arg(long, default_value_t = 1, value_parser = parse_attempts)]
+    pub attempts: usize,
+}
+
+/// `--attempts`: 1 to [`MAX_ATTEMPTS`].
+fn parse_attempts(s: &str) -> Result<usize, String> {
+    let n: usize = s
+        .parse()
+        .map_err(|_| format!("expected a whole number from 1 to {MAX_ATTEMPTS}, got `{s}`"))?;
+    if (1..=MAX_ATTEMPTS).contains(&n) {
+        Ok(n)
+    } else {
+        Err(format!("expected 1 to {MAX_ATTEMPTS}, got {n}"))
+    }
 }
 
 /// Progress on stderr: a bar on a terminal, otherwise a log line at the start, at the
@@ -276,7 +295,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     req.budget.until_feasible = args.until_feasible;
     if !args.json {
         eprintln!(
-            "planning {} with {} ({} on the {} encoding, {} init; seed {}, budget {} iterations / {} evaluations, population {})",
+            "planning {} with {} ({} on the {} encoding, {} init; seed {}, budget {} iterations / {} evaluations, population {}{})",
             world.spec.name,
             req.method,
             req.method.optimizer,
@@ -289,12 +308,48 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             req.budget
                 .evaluations
                 .map_or("any".into(), |m| m.to_string()),
-            req.params.population(req.method.optimizer)
+            req.params.population(req.method.optimizer),
+            if args.attempts > 1 {
+                format!("; up to {} attempts", args.attempts)
+            } else {
+                String::new()
+            }
         );
     }
-    let mut progress = Progress::new(&req.budget, world.uav_count(), args.json);
-    let (result, uav_trace) = run_with_uav_trace(&world, &req, &mut |r| progress.update(r));
-    progress.finish();
+    let progress =
+        std::cell::RefCell::new(Progress::new(&req.budget, world.uav_count(), args.json));
+    let mut current = 1;
+    let of = args.attempts;
+    let attempts = run_attempts(
+        &world,
+        &req,
+        args.attempts,
+        &mut |attempt, r| {
+            let mut p = progress.borrow_mut();
+            if attempt != current {
+                *p = Progress::new(&req.budget, world.uav_count(), args.json);
+                current = attempt;
+            }
+            p.update(r);
+        },
+        &mut |a| {
+            if of > 1 && !args.json {
+                progress.borrow().finish();
+                let verdict = if a.feasible {
+                    "feasible".to_string()
+                } else {
+                    format!("INFEASIBLE ({} violations)", a.violations)
+                };
+                eprintln!(
+                    "attempt {} of {of}, seed {}: {verdict} after {} evaluations, {:.1} s",
+                    a.attempt, a.seed, a.evaluations, a.seconds
+                );
+            }
+        },
+    );
+    progress.borrow().finish();
+    let chosen = attempts.chosen();
+    let (result, uav_trace) = (attempts.result, attempts.uav_trace);
     if result.outcome.termination == swarmplan_core::optim::Termination::TimeLimit {
         eprintln!(
             "stopped by --time-limit after {} evaluations: this run is not reproducible from its seed alone",
@@ -355,7 +410,10 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         .map(|p| p.display().to_string())
         .collect();
     }
-    let artifact = RunArtifact::new(&world, &result, req.budget, req.params, files);
+    let mut artifact = RunArtifact::new(&world, &result, req.budget, req.params, files);
+    if args.attempts > 1 {
+        artifact.attempts.clone_from(&attempts.records);
+    }
     let run_path = out.join("run.json");
     write_atomic(
         &run_path,
@@ -401,6 +459,15 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             result.outcome.iterations,
             result.seconds
         );
+        if args.attempts > 1 {
+            let evaluations: u64 = attempts.records.iter().map(|a| a.evaluations).sum();
+            println!(
+                "kept attempt {chosen} of {} (--attempts {}), {evaluations} evaluations in all; `--seed {}` repeats it alone",
+                attempts.records.len(),
+                args.attempts,
+                result.seed
+            );
+        }
         let timing = &world.spec.timing;
         if timing.pace_is_free() {
             println!(
