@@ -84,7 +84,10 @@ fn attempts_stop_at_the_first_feasible_plan_or_keep_the_least_violating() {
         let alone = run(&w, &request(1500, got.result.seed), &mut |_| {});
         assert_eq!(alone.outcome.best_x, got.result.outcome.best_x);
     }
-    assert!(several > 0, "no request needed a second attempt: the test tests nothing");
+    assert!(
+        several > 0,
+        "no request needed a second attempt: the test tests nothing"
+    );
 }
 
 #[test]
