@@ -1,5 +1,6 @@
 //! Human-readable tables of an assessment (per-UAV figures, cost breakdown, violations,
-//! and where outages happen out of any direct ground link).
+//! where outages happen out of any direct ground link, and separation conflicts at the
+//! edges of the take-off and landing zones).
 
 use std::fmt::Write;
 
@@ -78,7 +79,66 @@ pub fn assessment(world: &World, a: &Assessment) -> String {
     if let Some(note) = dead_zone_note(world, v) {
         let _ = writeln!(s, "{note}");
     }
+    if let Some(note) = zone_edge_note(world, v) {
+        let _ = writeln!(s, "{note}");
+    }
     s
+}
+
+/// For a plan with hard separation violations at the edge of the take-off or landing zone:
+/// how many, and what parting there takes. UAVs that leave one point at once are exempt
+/// inside the zone (radius r) and must be `separation` d apart where they leave it, so their
+/// directions must differ by 2 asin(d / 2r) (19 deg for 10 m at 30 m) unless their speeds
+/// or departure times differ; the search meets this as its hardest trap on the outside
+/// instances (docs/results.md, "Repairs, a doubled budget, ...").
+fn zone_edge_note(world: &World, violations: &[Violation]) -> Option<String> {
+    let timing = &world.spec.timing;
+    let (r, d) = (timing.zone_radius, timing.separation);
+    if r <= 0.0 {
+        return None;
+    }
+    // Within one separation distance beyond the zone's edge (horizontally).
+    let near = |p: &[f64; 3], c: swarmplan_core::DVec3| {
+        let h = (p[0] - c.x).hypot(p[1] - c.y);
+        h <= r + d
+    };
+    let conflicts: Vec<&Violation> = violations
+        .iter()
+        .filter(|x| x.hard && x.kind == ViolationKind::Separation)
+        .collect();
+    let (mut take_off, mut landing) = (0, 0);
+    for x in &conflicts {
+        let Some(p) = x.position else { continue };
+        if x.uav < world.uav_count() && near(&p, world.start(x.uav)) {
+            take_off += 1;
+        } else if near(&p, world.goal) {
+            landing += 1;
+        }
+    }
+    if take_off + landing == 0 {
+        return None;
+    }
+    let parting = 2.0 * (0.5 * d / r).min(1.0).asin().to_degrees();
+    // Delays stagger departures only: under common arrival every UAV still lands at T.
+    let delays = match (take_off > 0, timing.delay_is_free()) {
+        (false, _) => "",
+        (true, true) => {
+            "; departure delays are free here, so the search can also stagger the take-offs"
+        }
+        (true, false) => {
+            "; free departure delays (`timing.max_delay`) would let them take off one after another"
+        }
+    };
+    let n = conflicts.len();
+    let place = match (take_off, landing) {
+        (t, 0) => format!("{t} of the {n} where UAVs leave the take-off zone"),
+        (0, l) => format!("{l} of the {n} where UAVs enter the landing zone"),
+        (t, l) => format!("{t} of the {n} where UAVs leave the take-off zone and {l} where they enter the landing zone"),
+    };
+    Some(format!(
+        "  separation conflicts: {place} ({r} m around a start or UGV0; separation counts outside it): UAVs that cross its edge together must part by at least {parting:.0} deg there (2 asin({d} / {})), or cross it at different speeds or times{delays}; `plan --attempts K` tries further seeds",
+        2.0 * r
+    ))
 }
 
 /// For a plan with hard communication violations: how much of the map has no direct ground
@@ -183,6 +243,90 @@ mod tests {
         let text = assessment(&world, &a);
         assert!(
             text.contains("none of the 2 outages begins there"),
+            "{text}"
+        );
+    }
+
+    /// A hard separation conflict of UAV 0 with UAV 1 at `(x, y)`.
+    fn conflict_at(x: f64, y: f64) -> Violation {
+        Violation {
+            kind: ViolationKind::Separation,
+            uav: 0,
+            other: Some(1),
+            index: None,
+            position: Some([x, y, 100.0]),
+            time: Some(2.0),
+            amount: 1.0,
+            detail: String::new(),
+            hard: true,
+        }
+    }
+
+    #[test]
+    fn separation_conflicts_are_placed_at_the_zone_edges_or_en_route() {
+        // tiny: both UAVs start at (30, 30); UGV0 at (270, 170); zone 30 m, separation 10 m.
+        let world = build_world(&load_spec("tiny").expect("built-in"), None).expect("world");
+        let off = 30.0 / std::f64::consts::SQRT_2 + 2.0; // 32.8 m from the start
+        let take_off = conflict_at(30.0 + off / 1.2, 30.0 + off / 1.7);
+        let en_route = conflict_at(150.0, 100.0);
+        let landing = conflict_at(270.0 - 35.0, 170.0);
+        let note = zone_edge_note(&world, &[take_off.clone(), en_route.clone()]).expect("a note");
+        assert!(
+            note.contains("1 of the 2 where UAVs leave the take-off zone (30 m")
+                && note.contains("at least 19 deg")
+                && note.contains("take off one after another"),
+            "{note}"
+        );
+        let note = zone_edge_note(&world, &[landing.clone(), take_off]).expect("a note");
+        assert!(
+            note.contains("1 of the 2 where UAVs leave the take-off zone and 1 where they enter the landing zone"),
+            "{note}"
+        );
+        // Landing only: delays cannot help (every UAV lands at the common arrival time).
+        let note = zone_edge_note(&world, std::slice::from_ref(&landing)).expect("a note");
+        assert!(
+            note.contains("1 of the 1 where UAVs enter the landing zone"),
+            "{note}"
+        );
+        assert!(!note.contains("delays"), "{note}");
+        // En route only, or a soft conflict: no note.
+        assert_eq!(zone_edge_note(&world, &[en_route]), None);
+        let soft = Violation {
+            hard: false,
+            ..landing
+        };
+        assert_eq!(zone_edge_note(&world, &[soft]), None);
+    }
+
+    #[test]
+    fn a_fleet_leaving_one_point_side_by_side_gets_the_zone_edge_note() {
+        // Both UAVs of tiny from the shared start, UAV 1 by a waypoint 5 deg off UAV 0's
+        // straight line: closer than 10 m where they leave the 30 m zone.
+        let world = build_world(&load_spec("tiny").expect("built-in"), None).expect("world");
+        let (start, goal) = (world.start(0), world.goal);
+        let bearing = (goal.y - start.y).atan2(goal.x - start.x) + 5f64.to_radians();
+        let via = swarmplan_core::DVec3::new(
+            start.x + 100.0 * bearing.cos(),
+            start.y + 100.0 * bearing.sin(),
+            start.z,
+        );
+        let plan = Plan {
+            pace: 1.0,
+            delays: Vec::new(),
+            uavs: vec![
+                Path {
+                    waypoints: vec![start, goal],
+                },
+                Path {
+                    waypoints: vec![start, via, goal],
+                },
+            ],
+        };
+        let text = assessment(&world, &assess(&world, &plan, true));
+        assert!(text.contains("separation"), "{text}");
+        assert!(
+            text.contains("separation conflicts: 1 of the 2 where UAVs leave the take-off zone")
+                && text.contains("at least 19 deg"),
             "{text}"
         );
     }
