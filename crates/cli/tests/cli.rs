@@ -558,6 +558,22 @@ fn attempts_are_printed_stored_and_the_kept_one_repeats_by_its_seed() {
         .collect();
     assert_eq!(kept.len(), 1, "{run}");
     let seed = run["seed"].as_u64().unwrap().to_string();
+    // The report's subtitle says which attempt the plan is.
+    swarmplan()
+        .arg("report")
+        .arg(dir.path().join("a"))
+        .assert()
+        .success();
+    let html = std::fs::read_to_string(dir.path().join("a/report.html")).unwrap();
+    let chosen = kept[0]["attempt"].as_u64().unwrap();
+    assert!(
+        html.contains(&format!(
+            "seed {seed} (attempt {chosen} of {})",
+            records.len()
+        )),
+        "{}",
+        &html[..html.len().min(2000)]
+    );
     // Alone, by its seed: the same plan file.
     args("b").args(["--seed", &seed]).assert().success();
     let plan = |d: &str| std::fs::read_to_string(dir.path().join(d).join("plan.json")).unwrap();

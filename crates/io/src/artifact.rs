@@ -193,8 +193,15 @@ impl RunArtifact {
     /// A one-line description for figure titles and reports.
     #[must_use]
     pub fn describe(&self) -> String {
+        let attempt = self
+            .attempts
+            .iter()
+            .find(|a| a.seed == self.seed)
+            .map_or(String::new(), |a| {
+                format!(" (attempt {} of {})", a.attempt, self.attempts.len())
+            });
         format!(
-            "{} ({} on the {} encoding, {} init), seed {}, {} evaluations",
+            "{} ({} on the {} encoding, {} init), seed {}{attempt}, {} evaluations",
             self.method, self.optimizer, self.encoding, self.init, self.seed, self.evaluations
         )
     }
