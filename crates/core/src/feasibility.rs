@@ -235,6 +235,20 @@ pub struct ViolationSink {
     /// pair (separation), for the other UAV too. Lets a decomposing optimizer see which
     /// UAVs' paths hold the violations.
     pub by_uav: Option<Vec<f64>>,
+    /// Every violation added, as [`Deferred`], on request: lets a bounded assessment check
+    /// one part of a plan before the rest and still add the violations in the usual order
+    /// ([`ViolationSink::replay_into`]), so the sums come out the same bits.
+    pub deferred: Option<Vec<Deferred>>,
+}
+
+/// A violation as [`ViolationSink::add`] received it (amount already made finite), to be
+/// added again elsewhere.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Deferred {
+    pub kind: ViolationKind,
+    pub uav: usize,
+    pub amount: f64,
+    pub other: Option<usize>,
 }
 
 /// Where and when a violation happened (all optional).
@@ -280,6 +294,34 @@ impl ViolationSink {
         self.list.is_some()
     }
 
+    /// Also records every violation into `buffer` (cleared) for
+    /// [`ViolationSink::replay_into`].
+    #[must_use]
+    pub fn deferring(mut self, mut buffer: Vec<Deferred>) -> Self {
+        buffer.clear();
+        self.deferred = Some(buffer);
+        self
+    }
+
+    /// Adds the recorded violations to `other`, in the order they came: the sums of `other`
+    /// are then what they would be had they been added there in the first place (no place,
+    /// time or detail is replayed, so `other` must not be collecting a list).
+    pub fn replay_into(&self, other: &mut ViolationSink) {
+        debug_assert!(!other.is_collecting(), "a replay carries no details");
+        for d in self.deferred.iter().flatten() {
+            other.add(
+                d.kind,
+                d.uav,
+                d.amount,
+                At {
+                    other: d.other,
+                    ..At::default()
+                },
+                String::new,
+            );
+        }
+    }
+
     /// Records a violation; `detail` is only built when the list is kept.
     pub fn add(
         &mut self,
@@ -294,6 +336,14 @@ impl ViolationSink {
         } else {
             1e9
         };
+        if let Some(d) = &mut self.deferred {
+            d.push(Deferred {
+                kind,
+                uav,
+                amount,
+                other: at.other,
+            });
+        }
         let hard = self.profile.is_hard(kind);
         if hard {
             let m = 1.0 + amount / kind.scale();

@@ -7,7 +7,7 @@
 
 use std::cell::RefCell;
 
-use crate::cost::{assess, assess_into, Assessment, Scratch};
+use crate::cost::{assess, assess_bounded, assess_into, Assessment, Scratch};
 use crate::encoding::init::{sample_corridor_plan, sample_line_plan};
 use crate::encoding::{self, EncodingKind, Frame, InitKind, PathEncoding};
 use crate::feasibility::ViolationSink;
@@ -166,15 +166,26 @@ impl Problem for PlanningProblem<'_> {
     }
 
     fn evaluate_blocks(&self, x: &[f64], by_block: &mut Vec<f64>) -> Evaluation {
+        self.evaluate_blocks_bounded(x, by_block, f64::INFINITY)
+            .unwrap_or_else(Evaluation::worst)
+    }
+
+    /// Gives up once the violation measure passes `cutoff` ([`crate::cost::assess_bounded`]).
+    fn evaluate_blocks_bounded(
+        &self,
+        x: &[f64],
+        by_block: &mut Vec<f64>,
+        cutoff: f64,
+    ) -> Option<Evaluation> {
         BUFFERS.with(|b| {
             let mut b = b.borrow_mut();
             let (plan, scratch) = &mut *b;
             self.encoding.decode_into(x, plan);
             let mut sink = ViolationSink::new(self.world.spec.planning.profile)
                 .sharing(self.world.uav_count(), std::mem::take(by_block));
-            let (cost, violation) = assess_into(self.world, plan, scratch, &mut sink, false);
+            let assessed = assess_bounded(self.world, plan, scratch, &mut sink, false, cutoff);
             *by_block = sink.by_uav.take().unwrap_or_default();
-            Evaluation::new(cost, violation)
+            assessed.map(|(cost, violation)| Evaluation::new(cost, violation))
         })
     }
 

@@ -165,6 +165,20 @@ pub trait Problem: Sync {
         self.evaluate(x)
     }
 
+    /// [`Problem::evaluate_blocks`] for a caller that only needs to know whether `x` beats,
+    /// by Deb's rules, a candidate whose violation is `cutoff`: `None` (and `by_block`
+    /// unspecified) means the violation is known to exceed `cutoff`, so it does not. Must
+    /// otherwise return exactly what `evaluate_blocks` returns. The default evaluates in full.
+    fn evaluate_blocks_bounded(
+        &self,
+        x: &[f64],
+        by_block: &mut Vec<f64>,
+        cutoff: f64,
+    ) -> Option<Evaluation> {
+        let _ = cutoff;
+        Some(self.evaluate_blocks(x, by_block))
+    }
+
     /// Size of the blocks the variables come in (one UAV's path in a planning problem),
     /// for optimizers that decompose the search; the whole vector by default.
     fn block_size(&self) -> usize {

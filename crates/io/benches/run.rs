@@ -1,7 +1,8 @@
 //! Whole runs at paper settings (population 50, 200 iterations). Targets (issue 3): one
 //! single-UAV SPSO run with the `spso` objective <= 20 ms; one DLS-SMPSO run of a 5-UAV
 //! paper case <= 0.25 s. SPSO's DEM is used when `../shared/data/spso` has it, else the
-//! procedural terrain.
+//! procedural terrain. And one run of swarmplan's own method, `plan`'s default, at its
+//! default budget (38,700 evaluations), seed 1 every time.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use swarmplan_core::method::Method;
@@ -43,6 +44,19 @@ fn bench(c: &mut Criterion) {
                     .assessment
                     .total
             });
+        });
+    }
+    for case in ["paper-case1", "paper-case2"] {
+        let world = build_world(&load_spec(case).expect("built-in"), None).expect("world");
+        let method = Method::preset("swarmplan").expect("a preset");
+        let req = RunRequest {
+            method,
+            params: OptimizerParams::default(),
+            budget: method.optimizer.default_budget(),
+            seed: 1,
+        };
+        group.bench_function(format!("swarmplan/{case}"), |b| {
+            b.iter(|| run(&world, &req, &mut |_| {}).assessment.total);
         });
     }
     group.finish();

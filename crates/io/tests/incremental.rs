@@ -189,3 +189,58 @@ fn free_delays_add_a_value_per_block_that_the_plan_waits_for() {
     let start = tp.abs[0];
     assert_eq!(tp.position_at_time(0.5 * tp.depart), start, "uav {u}");
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(40))]
+
+    /// A bounded evaluation (the cooperative method's moved particles,
+    /// `Problem::evaluate_blocks_bounded`) either gives up, and then the full violation is
+    /// above the cutoff, or returns the full evaluation bit for bit, block shares included;
+    /// on warm buffers in a sequence of evaluations as a search makes them.
+    #[test]
+    fn a_bounded_evaluation_is_the_full_one_or_gives_up_only_above_the_cutoff(
+        world_index in 0usize..7,
+        seed in any::<u64>(),
+        cutoffs in prop::collection::vec(prop_oneof![Just(0.0), 0.0f64..3.0, 0.0f64..300.0], 1..8),
+    ) {
+        let world = &worlds()[world_index];
+        let problem = PlanningProblem::new(world, EncodingKind::Spherical, InitKind::Line);
+        let mut rng = rng_from_seed(seed);
+        let mut x = vec![0.0; problem.dimension()];
+        let (mut full_shares, mut bounded_shares) = (Vec::new(), Vec::new());
+        for cutoff in cutoffs {
+            problem.sample_initial(&mut rng, &mut x);
+            let full = problem.evaluate_blocks(&x, &mut full_shares);
+            match problem.evaluate_blocks_bounded(&x, &mut bounded_shares, cutoff) {
+                None => prop_assert!(full.violation > cutoff, "{} <= {cutoff}", full.violation),
+                Some(b) => {
+                    prop_assert_eq!(b.cost.to_bits(), full.cost.to_bits());
+                    prop_assert_eq!(b.violation.to_bits(), full.violation.to_bits());
+                    prop_assert_eq!(&bounded_shares, &full_shares);
+                }
+            }
+            // And a full evaluation after it on the same (thread's) buffers is unchanged.
+            let again = problem.evaluate_blocks(&x, &mut full_shares);
+            prop_assert_eq!(again.cost.to_bits(), full.cost.to_bits());
+        }
+    }
+}
+
+/// The property above must see both outcomes: a plan from the initialisation of
+/// paper-case2 is infeasible, so a cutoff of 0 gives it up and +inf does not.
+#[test]
+fn bounded_evaluations_give_up_below_the_violation_and_not_above() {
+    let problem = PlanningProblem::new(&worlds()[0], EncodingKind::Spherical, InitKind::Line);
+    let mut x = vec![0.0; problem.dimension()];
+    problem.sample_initial(&mut rng_from_seed(1), &mut x);
+    let mut shares = Vec::new();
+    let full = problem.evaluate_blocks(&x, &mut shares);
+    assert!(full.violation > 0.0);
+    assert!(problem
+        .evaluate_blocks_bounded(&x, &mut shares, 0.0)
+        .is_none());
+    let kept = problem
+        .evaluate_blocks_bounded(&x, &mut shares, full.violation)
+        .unwrap();
+    assert_eq!(kept.violation.to_bits(), full.violation.to_bits());
+}

@@ -138,6 +138,8 @@ pub struct Scratch {
     prox: proximity::ProximityScratch,
     prox_out: Vec<f64>,
     reports: Vec<UavReport>,
+    /// The UAVs' own violations of a bounded assessment, replayed after the rest.
+    deferred: Vec<crate::feasibility::Deferred>,
 }
 
 impl Scratch {
@@ -197,6 +199,31 @@ pub fn assess_into(
     sink: &mut ViolationSink,
     exact: bool,
 ) -> (f64, f64) {
+    assess_bounded(world, plan, scratch, sink, exact, f64::INFINITY)
+        .unwrap_or((f64::INFINITY, f64::INFINITY))
+}
+
+/// [`assess_into`], given up (`None`) once the hard-violation measure is known to exceed
+/// `cutoff`. Every violation adds at least 1 to the measure and floating-point addition is
+/// monotone, so a partial sum, or a sum over some of the violations, never exceeds the
+/// final one: a plan given up would have ended above `cutoff`. An optimizer that only needs
+/// to know whether a candidate beats one whose violation is `cutoff` (Deb's rules) learns
+/// that exactly, for less.
+///
+/// With a finite `cutoff` (and no violation list wanted) the UAVs' own terms (threats,
+/// turns, climb, clearance, battery: the cheaper part) are assessed first, into a sink that
+/// records their violations, and checked after each UAV; then the communication sweep and
+/// proximity, checked after each; then the recorded violations are added to `sink` in the
+/// order [`assess_into`] adds them, so a plan not given up gets the same bits. With
+/// `cutoff = +inf` it is [`assess_into`], operation for operation.
+pub fn assess_bounded(
+    world: &World,
+    plan: &Plan,
+    scratch: &mut Scratch,
+    sink: &mut ViolationSink,
+    exact: bool,
+    cutoff: f64,
+) -> Option<(f64, f64)> {
     let n = plan.uavs.len();
     let spso_preset = world.spec.objective.preset == ObjectivePreset::Spso;
     scratch.timed.fill(world, plan);
@@ -213,77 +240,143 @@ pub fn assess_into(
     scratch.reports.resize_with(n, UavReport::default);
     scratch.comm_out.resize(n, comm::CommOutcome::default());
     scratch.prox_out.resize(n, 0.0);
-    if !spso_preset {
-        comm::communication(
+    let own = |u: usize, sink: &mut ViolationSink| {
+        own_terms(
             world,
-            motion,
-            &mut scratch.comm,
-            sink,
-            &mut scratch.comm_out,
-        );
-        proximity::proximity(
-            world,
+            u,
             plan,
-            motion,
-            &mut scratch.prox,
+            (&scratch.timed, motion),
+            (flies_arcs, exact, spso_preset),
             sink,
-            &mut scratch.prox_out,
-        );
+        )
+    };
+    if cutoff.is_finite() && !sink.is_collecting() {
+        let mut first =
+            ViolationSink::new(sink.profile).deferring(std::mem::take(&mut scratch.deferred));
+        let mut given_up = false;
+        for u in 0..n {
+            scratch.reports[u] = own(u, &mut first);
+            if first.measure > cutoff {
+                given_up = true;
+                break;
+            }
+        }
+        if !given_up && !spso_preset {
+            comm::communication(
+                world,
+                motion,
+                &mut scratch.comm,
+                sink,
+                &mut scratch.comm_out,
+            );
+            given_up = sink.measure > cutoff;
+            if !given_up {
+                proximity::proximity(
+                    world,
+                    plan,
+                    motion,
+                    &mut scratch.prox,
+                    sink,
+                    &mut scratch.prox_out,
+                );
+                given_up = sink.measure > cutoff;
+            }
+        }
+        if !given_up {
+            first.replay_into(sink);
+        }
+        scratch.deferred = first.deferred.take().unwrap_or_default();
+        if given_up {
+            return None;
+        }
+    } else {
+        if !spso_preset {
+            comm::communication(
+                world,
+                motion,
+                &mut scratch.comm,
+                sink,
+                &mut scratch.comm_out,
+            );
+            proximity::proximity(
+                world,
+                plan,
+                motion,
+                &mut scratch.prox,
+                sink,
+                &mut scratch.prox_out,
+            );
+        }
+        for u in 0..n {
+            scratch.reports[u] = own(u, sink);
+        }
     }
     let mut terms_cost = 0.0;
-    for (u, path) in plan.uavs.iter().enumerate() {
-        // SPSO's terms, turn and climb limits are properties of the waypoints; what
-        // follows the UAV in time and space (clearance, speed, energy) is of what is flown.
-        let tp = &scratch.timed.paths[u];
-        let fp = &motion.paths[u];
-        let spso_terms = spso::spso_terms(world, u, path, tp, spso_preset, sink);
-        let kin = kinematics::kinematics(world, u, tp, !spso_preset, sink);
-        if flies_arcs {
-            crate::flight::check_turn_radius(
-                u,
-                &tp.abs,
-                |k| tp.time_at(k),
-                world.spec.uavs[u].turn_radius,
-                &fp.tangents,
-                sink,
-            );
-            crate::flight::check_arc_threats(world, u, fp, sink);
-        }
-        let min_clearance = clearance::check_clearance(world, u, (path, tp), fp, exact, sink);
-        let segments = tp.abs.len().saturating_sub(1);
-        let safety = safety::safety_term(world, u, fp, segments, sink);
-        let joules = energy::physical_energy(world, u, fp, &kin);
-        let battery_ratio = energy::check_battery(world, u, joules, sink);
-        let mut raw = Terms::default();
-        raw[TermId::Length] = spso_terms.length;
-        raw[TermId::Threat] = spso_terms.threat;
-        raw[TermId::Altitude] = spso_terms.altitude;
-        raw[TermId::Smoothness] = spso_terms.smoothness;
-        raw[TermId::Safety] = safety;
-        raw[TermId::Energy] = energy::energy_term(world, fp, &kin);
-        raw[TermId::Communication] = scratch.comm_out[u].cost;
-        raw[TermId::Turning] = kin.turn_sq;
-        raw[TermId::Obstacle] = scratch.prox_out[u];
-        let weighted = raw.weighted(&world.spec.objective);
-        let cost = weighted.sum();
-        terms_cost += cost;
-        scratch.reports[u] = UavReport {
-            raw,
-            weighted,
-            cost,
-            length_m: fp.length,
-            speed_mps: fp.speed,
-            arrival_s: fp.arrival,
-            energy_j: joules,
-            battery_ratio,
-            min_clearance_m: min_clearance,
-            outage_s: scratch.comm_out[u].outage_s,
-        };
+    for (u, r) in scratch.reports.iter_mut().enumerate() {
+        r.raw[TermId::Communication] = scratch.comm_out[u].cost;
+        r.raw[TermId::Obstacle] = scratch.prox_out[u];
+        r.outage_s = scratch.comm_out[u].outage_s;
+        r.weighted = r.raw.weighted(&world.spec.objective);
+        r.cost = r.weighted.sum();
+        terms_cost += r.cost;
     }
     let violation = sink.measure;
     // Soft violations (under the `paper` profile) cost as much as hard ones; only the
     // feasibility verdict ignores them.
     let total = terms_cost + penalty(world, violation + sink.soft);
     let total = if total.is_nan() { f64::INFINITY } else { total };
-    (total, violation)
+    Some((total, violation))
+}
+
+/// UAV `u`'s own terms and constraints: everything but communication and proximity, whose
+/// terms (and the weighted terms and cost) [`assess_bounded`] fills in afterwards.
+fn own_terms(
+    world: &World,
+    u: usize,
+    plan: &Plan,
+    (timed, motion): (&TimedPlan, &TimedPlan),
+    (flies_arcs, exact, spso_preset): (bool, bool, bool),
+    sink: &mut ViolationSink,
+) -> UavReport {
+    // SPSO's terms, turn and climb limits are properties of the waypoints; what follows
+    // the UAV in time and space (clearance, speed, energy) is of what is flown.
+    let path = &plan.uavs[u];
+    let tp = &timed.paths[u];
+    let fp = &motion.paths[u];
+    let spso_terms = spso::spso_terms(world, u, path, tp, spso_preset, sink);
+    let kin = kinematics::kinematics(world, u, tp, !spso_preset, sink);
+    if flies_arcs {
+        crate::flight::check_turn_radius(
+            u,
+            &tp.abs,
+            |k| tp.time_at(k),
+            world.spec.uavs[u].turn_radius,
+            &fp.tangents,
+            sink,
+        );
+        crate::flight::check_arc_threats(world, u, fp, sink);
+    }
+    let min_clearance = clearance::check_clearance(world, u, (path, tp), fp, exact, sink);
+    let segments = tp.abs.len().saturating_sub(1);
+    let safety = safety::safety_term(world, u, fp, segments, sink);
+    let joules = energy::physical_energy(world, u, fp, &kin);
+    let battery_ratio = energy::check_battery(world, u, joules, sink);
+    let mut raw = Terms::default();
+    raw[TermId::Length] = spso_terms.length;
+    raw[TermId::Threat] = spso_terms.threat;
+    raw[TermId::Altitude] = spso_terms.altitude;
+    raw[TermId::Smoothness] = spso_terms.smoothness;
+    raw[TermId::Safety] = safety;
+    raw[TermId::Energy] = energy::energy_term(world, fp, &kin);
+    raw[TermId::Turning] = kin.turn_sq;
+    UavReport {
+        raw,
+        length_m: fp.length,
+        speed_mps: fp.speed,
+        arrival_s: fp.arrival,
+        energy_j: joules,
+        battery_ratio,
+        min_clearance_m: min_clearance,
+        ..UavReport::default()
+    }
 }

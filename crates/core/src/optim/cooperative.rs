@@ -259,8 +259,10 @@ pub struct Cooperative {
     pbest_eval: Vec<Evaluation>,
     gbest: Vec<f64>,
     gbest_eval: Evaluation,
-    /// Whole vectors to evaluate together, with their evaluations and block shares.
+    /// Whole vectors to evaluate together, with their evaluations and block shares, and
+    /// the violation each must not exceed to matter (bounded evaluations).
     rows: Vec<f64>,
+    cutoffs: Vec<f64>,
     evals: Vec<Evaluation>,
     row_shares: Vec<Vec<f64>>,
     /// A point of the initialisation (fresh particles take one block of it).
@@ -312,6 +314,7 @@ impl Cooperative {
             gbest: Vec::new(),
             gbest_eval: Evaluation::worst(),
             rows: Vec::new(),
+            cutoffs: Vec::new(),
             evals: Vec::new(),
             row_shares: Vec::new(),
             scratch: Vec::new(),
@@ -427,7 +430,16 @@ impl Cooperative {
 
     /// Evaluates particles `from..to` of the sub-swarm (their rows of `self.x`) in the
     /// context with block `b` replaced, in parallel, into `self.evals` / `self.row_shares`.
-    fn evaluate_particles(&mut self, b: usize, from: usize, to: usize, ev: &mut Evaluator<'_>) {
+    /// With `bounded`, a particle that cannot beat its pbest may come back as
+    /// [`Evaluation::worst`] instead (see [`Cooperative::move_swarm`]).
+    fn evaluate_particles(
+        &mut self,
+        b: usize,
+        from: usize,
+        to: usize,
+        bounded: bool,
+        ev: &mut Evaluator<'_>,
+    ) {
         let r = self.range(b);
         let (len, dim) = (r.len(), self.dim);
         self.rows.resize((to - from) * dim, 0.0);
@@ -436,7 +448,20 @@ impl Cooperative {
             row.copy_from_slice(&self.context);
             row[r.clone()].copy_from_slice(&self.x[i * len..(i + 1) * len]);
         }
-        ev.evaluate_rows_blocks(&self.rows, to - from, &mut self.evals, &mut self.row_shares);
+        if bounded {
+            self.cutoffs.clear();
+            self.cutoffs
+                .extend(self.pbest_eval[from..to].iter().map(|p| p.violation));
+            ev.evaluate_rows_blocks_bounded(
+                &self.rows,
+                to - from,
+                &self.cutoffs,
+                &mut self.evals,
+                &mut self.row_shares,
+            );
+        } else {
+            ev.evaluate_rows_blocks(&self.rows, to - from, &mut self.evals, &mut self.row_shares);
+        }
     }
 
     /// Takes the evaluation of particle i (the k-th of its batch) as its pbest (always, or
@@ -523,7 +548,7 @@ impl Cooperative {
                     }
                 }
             }
-            self.evaluate_particles(b, from, to, ev);
+            self.evaluate_particles(b, from, to, false, ev);
             let got = self.evals.len();
             for k in 0..got {
                 self.take_particle(b, from + k, k, true);
@@ -603,7 +628,9 @@ impl Cooperative {
                     self.x[idx] = into_bound(bj, moved);
                 }
             }
-            self.evaluate_particles(b, from, to, ev);
+            // A moved particle counts only if it beats its pbest, which (feasibility first)
+            // it cannot once its violation passes the pbest's: such evaluations stop there.
+            self.evaluate_particles(b, from, to, self.params.feasibility_first, ev);
             let got = self.evals.len();
             for k in 0..got {
                 self.take_particle(b, from + k, k, false);
@@ -736,6 +763,57 @@ mod tests {
         fn block_size(&self) -> usize {
             3
         }
+    }
+
+    /// [`Constrained`] that gives up every bounded evaluation it can (and counts them).
+    struct GivingUp(Constrained, std::sync::atomic::AtomicUsize);
+
+    impl Problem for GivingUp {
+        fn bounds(&self) -> &[Bound] {
+            self.0.bounds()
+        }
+        fn evaluate(&self, x: &[f64]) -> Evaluation {
+            self.0.evaluate(x)
+        }
+        fn block_size(&self) -> usize {
+            self.0.block_size()
+        }
+        fn evaluate_blocks_bounded(
+            &self,
+            x: &[f64],
+            by_block: &mut Vec<f64>,
+            cutoff: f64,
+        ) -> Option<Evaluation> {
+            let e = self.evaluate_blocks(x, by_block);
+            if e.violation > cutoff {
+                self.1.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                return None;
+            }
+            Some(e)
+        }
+    }
+
+    #[test]
+    fn giving_up_bounded_evaluations_changes_nothing_in_a_run() {
+        let bounds = vec![Bound::new(-5.0, 5.0); 9];
+        let run = |p: &dyn Problem| {
+            let mut opt = Cooperative::new(CoopParams::DEFAULT);
+            solve(
+                p,
+                &mut opt,
+                Budget::evaluations(3000),
+                &mut rng_from_seed(4),
+                &mut |_| {},
+            )
+        };
+        let plain = run(&Constrained(bounds.clone()));
+        let giving_up = GivingUp(Constrained(bounds), std::sync::atomic::AtomicUsize::new(0));
+        let bounded = run(&giving_up);
+        assert_eq!(plain.best_x, bounded.best_x);
+        assert_eq!(plain.trace, bounded.trace);
+        assert_eq!(plain.evaluations, bounded.evaluations);
+        let given_up = giving_up.1.into_inner();
+        assert!(given_up > 100, "only {given_up} evaluations given up");
     }
 
     /// Violation 1 on a plateau that no local move leaves.

@@ -140,6 +140,43 @@ impl<'a> Evaluator<'a> {
             .collect_into_vec(out);
     }
 
+    /// [`Evaluator::evaluate_rows_blocks`] for rows that only need to beat, by Deb's rules,
+    /// a candidate whose violation is `cutoffs[i]` ([`Problem::evaluate_blocks_bounded`]): a
+    /// row the problem gives up on comes back as [`Evaluation::worst`], which no comparison
+    /// prefers, and its shares are unspecified. Each row counts as one evaluation either way,
+    /// so budgets stay what they were; only the time falls.
+    pub fn evaluate_rows_blocks_bounded(
+        &mut self,
+        rows: &[f64],
+        n: usize,
+        cutoffs: &[f64],
+        out: &mut Vec<Evaluation>,
+        shares: &mut Vec<Vec<f64>>,
+    ) {
+        let problem = self.problem;
+        let dim = self.dimension();
+        let allowed = self.admit_rows(rows, n);
+        assert!(cutoffs.len() >= allowed, "a cutoff per row");
+        shares.resize_with(allowed.max(shares.len()), Vec::new);
+        out.clear();
+        if dim == 0 {
+            for s in shares.iter_mut().take(allowed) {
+                out.push(normalised(problem.evaluate_blocks(&[], s)));
+            }
+            return;
+        }
+        rows[..allowed * dim]
+            .par_chunks(dim)
+            .zip(shares[..allowed].par_iter_mut())
+            .zip(cutoffs[..allowed].par_iter())
+            .map(|((x, s), &cutoff)| {
+                problem
+                    .evaluate_blocks_bounded(x, s, cutoff)
+                    .map_or_else(Evaluation::worst, normalised)
+            })
+            .collect_into_vec(out);
+    }
+
     /// Counts as many of `n` rows as the budget allows and returns that number; marks the
     /// evaluator exhausted when it refused some.
     fn admit_rows(&mut self, rows: &[f64], n: usize) -> usize {
