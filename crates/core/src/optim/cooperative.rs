@@ -66,9 +66,16 @@
 //! row leave an infeasible context without a drop of its violation by `restart_drop` (5 %),
 //! a new context is drawn as at the start (`population` evaluations) and the spreads reset;
 //! the best plan ever seen is kept apart and is what the run returns. A feasible context is
-//! never restarted. From the budget
-//! fraction `refine_from` on, restarts stop and the search goes back to the best plan seen,
-//! to refine it (a near-feasible plan found early is not left for a fresh random one).
+//! never restarted. From the budget fraction `refine_from` on, restarts stop and the search
+//! goes back to the best plan seen, to refine it (a near-feasible plan found early is not
+//! left for a fresh random one).
+//!
+//! **Bounded evaluations.** A moved particle matters only if it beats its pbest, which by
+//! Deb's rules it cannot once its violation exceeds the pbest's; its evaluation is therefore
+//! [bounded](Evaluator::evaluate_rows_blocks_bounded) by that violation and may stop early
+//! (docs/performance.md, "Bounded evaluations"). It still counts as an evaluation, and the
+//! run is the same bits as with full evaluations (test
+//! `giving_up_bounded_evaluations_changes_nothing_in_a_run`).
 //!
 //! The inner PSO uses Clerc & Kennedy's constriction-equivalent constants (w = 0.7298,
 //! c1 = c2 = 1.49618; IEEE TEC 6(1):58-73, 2002), which converge within the short visits
