@@ -240,6 +240,12 @@ pub fn assess_bounded(
     scratch.reports.resize_with(n, UavReport::default);
     scratch.comm_out.resize(n, comm::CommOutcome::default());
     scratch.prox_out.resize(n, 0.0);
+    let fleet = (
+        &mut scratch.comm,
+        &mut scratch.comm_out,
+        &mut scratch.prox,
+        &mut scratch.prox_out,
+    );
     let own = |u: usize, sink: &mut ViolationSink| {
         own_terms(
             world,
@@ -262,25 +268,7 @@ pub fn assess_bounded(
             }
         }
         if !given_up && !spso_preset {
-            comm::communication(
-                world,
-                motion,
-                &mut scratch.comm,
-                sink,
-                &mut scratch.comm_out,
-            );
-            given_up = sink.measure > cutoff;
-            if !given_up {
-                proximity::proximity(
-                    world,
-                    plan,
-                    motion,
-                    &mut scratch.prox,
-                    sink,
-                    &mut scratch.prox_out,
-                );
-                given_up = sink.measure > cutoff;
-            }
+            given_up = !fleet_terms(world, plan, motion, fleet, sink, cutoff);
         }
         if !given_up {
             first.replay_into(sink);
@@ -291,21 +279,7 @@ pub fn assess_bounded(
         }
     } else {
         if !spso_preset {
-            comm::communication(
-                world,
-                motion,
-                &mut scratch.comm,
-                sink,
-                &mut scratch.comm_out,
-            );
-            proximity::proximity(
-                world,
-                plan,
-                motion,
-                &mut scratch.prox,
-                sink,
-                &mut scratch.prox_out,
-            );
+            fleet_terms(world, plan, motion, fleet, sink, f64::INFINITY);
         }
         for u in 0..n {
             scratch.reports[u] = own(u, sink);
@@ -327,6 +301,32 @@ pub fn assess_bounded(
     let total = if total.is_nan() { f64::INFINITY } else { total };
     Some((total, violation))
 }
+
+/// The fleet's terms: the communication sweep, then proximity unless the measure already
+/// exceeds `cutoff`; false when it does after either (given up).
+fn fleet_terms(
+    world: &World,
+    plan: &Plan,
+    motion: &TimedPlan,
+    (comm, comm_out, prox, prox_out): FleetBuffers<'_>,
+    sink: &mut ViolationSink,
+    cutoff: f64,
+) -> bool {
+    comm::communication(world, motion, comm, sink, comm_out);
+    if sink.measure > cutoff {
+        return false;
+    }
+    proximity::proximity(world, plan, motion, prox, sink, prox_out);
+    sink.measure <= cutoff
+}
+
+/// The buffers of [`fleet_terms`], borrowed from [`Scratch`].
+type FleetBuffers<'a> = (
+    &'a mut comm::CommScratch,
+    &'a mut Vec<comm::CommOutcome>,
+    &'a mut proximity::ProximityScratch,
+    &'a mut Vec<f64>,
+);
 
 /// UAV `u`'s own terms and constraints: everything but communication and proximity, whose
 /// terms (and the weighted terms and cost) [`assess_bounded`] fills in afterwards.

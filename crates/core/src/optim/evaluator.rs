@@ -122,22 +122,7 @@ impl<'a> Evaluator<'a> {
         out: &mut Vec<Evaluation>,
         shares: &mut Vec<Vec<f64>>,
     ) {
-        let problem = self.problem;
-        let dim = self.dimension();
-        let allowed = self.admit_rows(rows, n);
-        shares.resize_with(allowed.max(shares.len()), Vec::new);
-        out.clear();
-        if dim == 0 {
-            for s in shares.iter_mut().take(allowed) {
-                out.push(normalised(problem.evaluate_blocks(&[], s)));
-            }
-            return;
-        }
-        rows[..allowed * dim]
-            .par_chunks(dim)
-            .zip(shares[..allowed].par_iter_mut())
-            .map(|(x, s)| normalised(problem.evaluate_blocks(x, s)))
-            .collect_into_vec(out);
+        self.rows_blocks(rows, n, |_| f64::INFINITY, out, shares);
     }
 
     /// [`Evaluator::evaluate_rows_blocks`] for rows that only need to beat, by Deb's rules,
@@ -153,27 +138,45 @@ impl<'a> Evaluator<'a> {
         out: &mut Vec<Evaluation>,
         shares: &mut Vec<Vec<f64>>,
     ) {
+        assert!(cutoffs.len() >= n, "a cutoff per row");
+        self.rows_blocks(rows, n, |i| cutoffs[i], out, shares);
+    }
+
+    /// Rows with block shares, row i bounded by `cutoff(i)` (+inf: evaluated in full, which
+    /// a problem's bounded evaluation must then be).
+    fn rows_blocks(
+        &mut self,
+        rows: &[f64],
+        n: usize,
+        cutoff: impl Fn(usize) -> f64 + Sync,
+        out: &mut Vec<Evaluation>,
+        shares: &mut Vec<Vec<f64>>,
+    ) {
         let problem = self.problem;
         let dim = self.dimension();
         let allowed = self.admit_rows(rows, n);
-        assert!(cutoffs.len() >= allowed, "a cutoff per row");
         shares.resize_with(allowed.max(shares.len()), Vec::new);
         out.clear();
+        let one = |x: &[f64], s: &mut Vec<f64>, c: f64| {
+            if c == f64::INFINITY {
+                normalised(problem.evaluate_blocks(x, s))
+            } else {
+                problem
+                    .evaluate_blocks_bounded(x, s, c)
+                    .map_or_else(Evaluation::worst, normalised)
+            }
+        };
         if dim == 0 {
-            for s in shares.iter_mut().take(allowed) {
-                out.push(normalised(problem.evaluate_blocks(&[], s)));
+            for (i, s) in shares.iter_mut().take(allowed).enumerate() {
+                out.push(one(&[], s, cutoff(i)));
             }
             return;
         }
         rows[..allowed * dim]
             .par_chunks(dim)
             .zip(shares[..allowed].par_iter_mut())
-            .zip(cutoffs[..allowed].par_iter())
-            .map(|((x, s), &cutoff)| {
-                problem
-                    .evaluate_blocks_bounded(x, s, cutoff)
-                    .map_or_else(Evaluation::worst, normalised)
-            })
+            .enumerate()
+            .map(|(i, (x, s))| one(x, s, cutoff(i)))
             .collect_into_vec(out);
     }
 
