@@ -7,7 +7,7 @@
 
 use std::cell::RefCell;
 
-use crate::cost::{assess, assess_bounded, assess_into, Assessment, Scratch};
+use crate::cost::{assess, assess_bounded, assess_into, Assessment, Cutoff, Scratch};
 use crate::encoding::init::{sample_corridor_plan, sample_line_plan};
 use crate::encoding::{self, EncodingKind, Frame, InitKind, PathEncoding};
 use crate::feasibility::ViolationSink;
@@ -165,6 +165,25 @@ impl Problem for PlanningProblem<'_> {
         })
     }
 
+    /// Gives up once the total cost is known to pass `cutoff` ([`crate::cost::assess_bounded`]).
+    fn evaluate_cost_bounded(&self, x: &[f64], cutoff: f64) -> Option<Evaluation> {
+        BUFFERS.with(|b| {
+            let mut b = b.borrow_mut();
+            let (plan, scratch) = &mut *b;
+            self.encoding.decode_into(x, plan);
+            let mut sink = ViolationSink::new(self.world.spec.planning.profile);
+            assess_bounded(
+                self.world,
+                plan,
+                scratch,
+                &mut sink,
+                false,
+                Cutoff::cost(cutoff),
+            )
+            .map(|(cost, violation)| Evaluation::new(cost, violation))
+        })
+    }
+
     fn evaluate_blocks(&self, x: &[f64], by_block: &mut Vec<f64>) -> Evaluation {
         self.evaluate_blocks_bounded(x, by_block, f64::INFINITY)
             .unwrap_or_else(Evaluation::worst)
@@ -183,7 +202,14 @@ impl Problem for PlanningProblem<'_> {
             self.encoding.decode_into(x, plan);
             let mut sink = ViolationSink::new(self.world.spec.planning.profile)
                 .sharing(self.world.uav_count(), std::mem::take(by_block));
-            let assessed = assess_bounded(self.world, plan, scratch, &mut sink, false, cutoff);
+            let assessed = assess_bounded(
+                self.world,
+                plan,
+                scratch,
+                &mut sink,
+                false,
+                Cutoff::violation(cutoff),
+            );
             *by_block = sink.by_uav.take().unwrap_or_default();
             assessed.map(|(cost, violation)| Evaluation::new(cost, violation))
         })

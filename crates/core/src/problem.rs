@@ -165,6 +165,14 @@ pub trait Problem: Sync {
         self.evaluate(x)
     }
 
+    /// [`Problem::evaluate`] for a caller that only needs to know whether `x` costs less
+    /// than `cutoff`: `None` means its cost is known to exceed `cutoff`, so it does not. Must
+    /// otherwise return exactly what `evaluate` returns. The default evaluates in full.
+    fn evaluate_cost_bounded(&self, x: &[f64], cutoff: f64) -> Option<Evaluation> {
+        let _ = cutoff;
+        Some(self.evaluate(x))
+    }
+
     /// [`Problem::evaluate_blocks`] for a caller that only needs to know whether `x` beats,
     /// by Deb's rules, a candidate whose violation is `cutoff`: `None` (and `by_block`
     /// unspecified) means the violation is known to exceed `cutoff`, so it does not. Must

@@ -199,30 +199,73 @@ pub fn assess_into(
     sink: &mut ViolationSink,
     exact: bool,
 ) -> (f64, f64) {
-    assess_bounded(world, plan, scratch, sink, exact, f64::INFINITY)
+    assess_bounded(world, plan, scratch, sink, exact, Cutoff::NONE)
         .unwrap_or((f64::INFINITY, f64::INFINITY))
 }
 
-/// [`assess_into`], given up (`None`) once the hard-violation measure is known to exceed
-/// `cutoff`. Every violation adds at least 1 to the measure and floating-point addition is
-/// monotone, so a partial sum, or a sum over some of the violations, never exceeds the
-/// final one: a plan given up would have ended above `cutoff`. An optimizer that only needs
-/// to know whether a candidate beats one whose violation is `cutoff` (Deb's rules) learns
+/// What a bounded assessment ([`assess_bounded`]) may give up above: a plan whose violation
+/// measure exceeds `violation`, or whose total cost exceeds `cost`, is of no use to the
+/// caller (+inf: no bound).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cutoff {
+    pub violation: f64,
+    pub cost: f64,
+}
+
+impl Cutoff {
+    /// No bound: a full assessment.
+    pub const NONE: Self = Self {
+        violation: f64::INFINITY,
+        cost: f64::INFINITY,
+    };
+
+    /// Only plans with a violation measure up to `v` matter (Deb's rules against one whose
+    /// violation is `v`).
+    #[must_use]
+    pub const fn violation(v: f64) -> Self {
+        Self {
+            violation: v,
+            ..Self::NONE
+        }
+    }
+
+    /// Only plans with a total cost up to `c` matter (penalised cost against one costing `c`).
+    #[must_use]
+    pub const fn cost(c: f64) -> Self {
+        Self {
+            cost: c,
+            ..Self::NONE
+        }
+    }
+
+    fn is_none(self) -> bool {
+        self.violation == f64::INFINITY && self.cost == f64::INFINITY
+    }
+}
+
+/// [`assess_into`], given up (`None`) once the plan is known to exceed `cutoff`. Every
+/// violation adds at least 1 to the measure and floating-point addition is monotone in each
+/// argument, so a partial sum, or a sum over some of the violations, never exceeds the final
+/// one; likewise the total cost with the communication and obstacle terms (both >= 0) still
+/// at zero, and the penalty of the violations found so far, never exceed the final total.
+/// A plan given up would have ended above `cutoff`, so an optimizer that only needs to know
+/// whether a candidate beats one at the cutoff (by Deb's rules or by penalised cost) learns
 /// that exactly, for less.
 ///
-/// With a finite `cutoff` (and no violation list wanted) the UAVs' own terms (threats,
-/// turns, climb, clearance, battery: the cheaper part) are assessed first, into a sink that
-/// records their violations, and checked after each UAV; then the communication sweep and
-/// proximity, checked after each; then the recorded violations are added to `sink` in the
-/// order [`assess_into`] adds them, so a plan not given up gets the same bits. With
-/// `cutoff = +inf` it is [`assess_into`], operation for operation.
+/// With a cutoff (and no violation list wanted) the UAVs' own terms (threats, turns, climb,
+/// clearance, battery: the cheaper part) are assessed first, into a sink that records their
+/// violations, with the violation checked after each UAV and the cost after all of them;
+/// then the communication sweep and proximity, checked after each; then the recorded
+/// violations are added to `sink` in the order [`assess_into`] adds them, so a plan not
+/// given up gets the same bits. With [`Cutoff::NONE`] it is [`assess_into`], operation for
+/// operation.
 pub fn assess_bounded(
     world: &World,
     plan: &Plan,
     scratch: &mut Scratch,
     sink: &mut ViolationSink,
     exact: bool,
-    cutoff: f64,
+    cutoff: Cutoff,
 ) -> Option<(f64, f64)> {
     let n = plan.uavs.len();
     let spso_preset = world.spec.objective.preset == ObjectivePreset::Spso;
@@ -256,19 +299,28 @@ pub fn assess_bounded(
             sink,
         )
     };
-    if cutoff.is_finite() && !sink.is_collecting() {
+    if !cutoff.is_none() && !sink.is_collecting() {
         let mut first =
             ViolationSink::new(sink.profile).deferring(std::mem::take(&mut scratch.deferred));
         let mut given_up = false;
         for u in 0..n {
             scratch.reports[u] = own(u, &mut first);
-            if first.measure > cutoff {
+            if first.measure > cutoff.violation {
                 given_up = true;
                 break;
             }
         }
+        if !given_up && cutoff.cost < f64::INFINITY {
+            // The own terms' reports hold zero communication and obstacle terms.
+            let mut terms = 0.0;
+            for r in &scratch.reports {
+                terms += r.raw.weighted(&world.spec.objective).sum();
+            }
+            let least = terms + penalty(world, first.measure + first.soft);
+            given_up = least > cutoff.cost;
+        }
         if !given_up && !spso_preset {
-            given_up = !fleet_terms(world, plan, motion, fleet, sink, cutoff);
+            given_up = !fleet_terms(world, plan, motion, fleet, sink, cutoff.violation);
         }
         if !given_up {
             first.replay_into(sink);

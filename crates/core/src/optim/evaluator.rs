@@ -94,6 +94,19 @@ impl<'a> Evaluator<'a> {
         Some(normalised(self.problem.evaluate(x)))
     }
 
+    /// [`Evaluator::evaluate`] for a candidate that only matters if it costs less than
+    /// `cutoff` ([`Problem::evaluate_cost_bounded`]): one the problem gives up on comes back
+    /// as [`Evaluation::worst`], which no comparison prefers. Counts one evaluation either
+    /// way; `None` only when the budget is spent.
+    pub fn evaluate_cost_bounded(&mut self, x: &[f64], cutoff: f64) -> Option<Evaluation> {
+        self.admit(x)?;
+        Some(
+            self.problem
+                .evaluate_cost_bounded(x, cutoff)
+                .map_or_else(Evaluation::worst, normalised),
+        )
+    }
+
     /// Evaluates the first `n` rows of `rows` (each [`Evaluator::dimension`] long) in
     /// parallel, as many as the budget allows (the first ones), into `out` in row order; a
     /// row the budget refused has no entry, so `out.len()` says how many were evaluated.

@@ -284,7 +284,9 @@ impl Swarm {
     pub fn evaluate_particle(&mut self, i: usize, ev: &mut Evaluator<'_>) -> Option<bool> {
         let dim = self.dim;
         let x = row(&self.x, i, dim);
-        let e = ev.evaluate(x)?;
+        // Only a strict improvement on pbest_i matters, so the evaluation may stop once the
+        // cost is known to exceed pbest_i's (the same run, for less; docs/performance.md).
+        let e = ev.evaluate_cost_bounded(x, self.pbest_eval[i].cost)?;
         if !e.better_than(&self.pbest_eval[i]) {
             return Some(false);
         }
