@@ -144,7 +144,9 @@ impl Abc {
         let x = row_mut(&mut self.x, i, dim);
         let old = x[j];
         x[j] = into_bound(&ev.bounds()[j], old + phi * (old - xkj));
-        let Some(e) = ev.evaluate(x) else {
+        // The candidate matters only if it beats source i, which costs no less than the best
+        // so far, so the evaluation may stop once its cost is known to exceed source i's.
+        let Some(e) = ev.evaluate_cost_bounded(x, self.eval[i].cost) else {
             x[j] = old;
             return None;
         };

@@ -184,7 +184,11 @@ impl Optimizer for Qpso {
                 };
                 x[j] = into_bound(&bounds[j], moved);
             }
-            let Some(e) = ev.evaluate(x) else { break };
+            // Only a strict improvement on pbest_i matters (gbest is offered nothing else),
+            // so the evaluation may stop once the cost is known to exceed pbest_i's.
+            let Some(e) = ev.evaluate_cost_bounded(x, self.pbest_eval[i].cost) else {
+                break;
+            };
             if e.better_than(&self.pbest_eval[i]) {
                 row_mut(&mut self.pbest, i, dim).copy_from_slice(x);
                 self.pbest_eval[i] = e;
