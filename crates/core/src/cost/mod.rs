@@ -252,9 +252,10 @@ impl Cutoff {
 /// whether a candidate beats one at the cutoff (by Deb's rules or by penalised cost) learns
 /// that exactly, for less.
 ///
-/// With a cutoff (and no violation list wanted) the UAVs' own terms (threats, turns, climb,
-/// clearance, battery: the cheaper part) are assessed first, into a sink that records their
-/// violations, with the violation checked after each UAV and the cost after all of them;
+/// With a cutoff (no violation list wanted, and not under the `spso` preset, which has no
+/// fleet terms to skip) the UAVs' own terms (threats, turns, climb, clearance, battery: the
+/// cheaper part) are assessed first, into a sink that records their violations, with the
+/// violation checked after each UAV and the cost after all of them;
 /// then the communication sweep and proximity, checked after each; then the recorded
 /// violations are added to `sink` in the order [`assess_into`] adds them, so a plan not
 /// given up gets the same bits. With [`Cutoff::NONE`] it is [`assess_into`], operation for
@@ -299,7 +300,8 @@ pub fn assess_bounded(
             sink,
         )
     };
-    if !cutoff.is_none() && !sink.is_collecting() {
+    // Under the `spso` preset there is no fleet term to skip: nothing to gain.
+    if !cutoff.is_none() && !sink.is_collecting() && !spso_preset {
         let mut first =
             ViolationSink::new(sink.profile).deferring(std::mem::take(&mut scratch.deferred));
         let mut given_up = false;
@@ -319,7 +321,7 @@ pub fn assess_bounded(
             let least = terms + penalty(world, first.measure + first.soft);
             given_up = least > cutoff.cost;
         }
-        if !given_up && !spso_preset {
+        if !given_up {
             given_up = !fleet_terms(world, plan, motion, fleet, sink, cutoff.violation);
         }
         if !given_up {
