@@ -126,6 +126,35 @@ impl<'a> Evaluator<'a> {
             .collect_into_vec(out);
     }
 
+    /// [`Evaluator::evaluate_rows`] for rows that only matter if they cost less than
+    /// `cutoff` ([`Problem::evaluate_cost_bounded`]): a row the problem gives up on comes
+    /// back as [`Evaluation::worst`]. Each row counts as one evaluation either way.
+    pub fn evaluate_rows_cost_bounded(
+        &mut self,
+        rows: &[f64],
+        n: usize,
+        cutoff: f64,
+        out: &mut Vec<Evaluation>,
+    ) {
+        let problem = self.problem;
+        let dim = self.dimension();
+        let allowed = self.admit_rows(rows, n);
+        out.clear();
+        let one = |x: &[f64]| {
+            problem
+                .evaluate_cost_bounded(x, cutoff)
+                .map_or_else(Evaluation::worst, normalised)
+        };
+        if dim == 0 {
+            out.extend((0..allowed).map(|_| one(&[])));
+            return;
+        }
+        rows[..allowed * dim]
+            .par_chunks(dim)
+            .map(one)
+            .collect_into_vec(out);
+    }
+
     /// [`Evaluator::evaluate_rows`] with each row's block shares of the violation
     /// ([`Problem::evaluate_blocks`]) in `shares[i]`.
     pub fn evaluate_rows_blocks(

@@ -137,7 +137,15 @@ impl Gwo {
     /// (the leaders are fixed while the pack moves, so this is Mirjalili's update).
     fn evaluate_pack(&mut self, ev: &mut Evaluator<'_>) {
         let mut evals = Vec::with_capacity(self.n);
-        ev.evaluate_rows(&self.x, self.n, &mut evals);
+        // With three leaders, a wolf matters only if it costs less than delta, whose cost
+        // only falls while the pack is offered: its evaluation may stop above delta's cost
+        // at the start (the same run, for less; docs/performance.md).
+        let cutoff = if self.leaders.len == 3 {
+            self.leaders.eval[2].cost
+        } else {
+            f64::INFINITY
+        };
+        ev.evaluate_rows_cost_bounded(&self.x, self.n, cutoff, &mut evals);
         for (i, e) in evals.into_iter().enumerate() {
             self.leaders.offer(row(&self.x, i, self.dim), e);
         }
