@@ -255,11 +255,10 @@ impl Cutoff {
 /// With a cutoff (no violation list wanted, and not under the `spso` preset, which has no
 /// fleet terms to skip) the UAVs' own terms (threats, turns, climb, clearance, battery: the
 /// cheaper part) are assessed first, into a sink that records their violations, with the
-/// violation checked after each UAV and the cost after all of them;
-/// then the communication sweep and proximity, checked after each; then the recorded
-/// violations are added to `sink` in the order [`assess_into`] adds them, so a plan not
-/// given up gets the same bits. With [`Cutoff::NONE`] it is [`assess_into`], operation for
-/// operation.
+/// violation checked after each UAV and the cost after all of them; then the communication
+/// sweep and proximity, checked after each; then the recorded violations are added to `sink`
+/// in the order [`assess_into`] adds them, so a plan not given up gets the same bits. With
+/// [`Cutoff::NONE`] it is [`assess_into`], operation for operation.
 pub fn assess_bounded(
     world: &World,
     plan: &Plan,

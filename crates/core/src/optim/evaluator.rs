@@ -90,8 +90,7 @@ impl<'a> Evaluator<'a> {
     /// Evaluates `x`, or returns `None` (without evaluating or counting) when the budget is
     /// spent. NaN costs and violations come back as +inf, so a NaN never wins a comparison.
     pub fn evaluate(&mut self, x: &[f64]) -> Option<Evaluation> {
-        self.admit(x)?;
-        Some(normalised(self.problem.evaluate(x)))
+        self.evaluate_cost_bounded(x, f64::INFINITY)
     }
 
     /// [`Evaluator::evaluate`] for a candidate that only matters if it costs less than
@@ -100,11 +99,7 @@ impl<'a> Evaluator<'a> {
     /// way; `None` only when the budget is spent.
     pub fn evaluate_cost_bounded(&mut self, x: &[f64], cutoff: f64) -> Option<Evaluation> {
         self.admit(x)?;
-        Some(
-            self.problem
-                .evaluate_cost_bounded(x, cutoff)
-                .map_or_else(Evaluation::worst, normalised),
-        )
+        Some(cost_bounded(self.problem, x, cutoff))
     }
 
     /// Evaluates the first `n` rows of `rows` (each [`Evaluator::dimension`] long) in
@@ -112,18 +107,7 @@ impl<'a> Evaluator<'a> {
     /// row the budget refused has no entry, so `out.len()` says how many were evaluated.
     /// Equal, row by row, to calling [`Evaluator::evaluate`] on each in turn.
     pub fn evaluate_rows(&mut self, rows: &[f64], n: usize, out: &mut Vec<Evaluation>) {
-        let problem = self.problem;
-        let dim = self.dimension();
-        let allowed = self.admit_rows(rows, n);
-        out.clear();
-        if dim == 0 {
-            out.extend((0..allowed).map(|_| normalised(problem.evaluate(&[]))));
-            return;
-        }
-        rows[..allowed * dim]
-            .par_chunks(dim)
-            .map(|x| normalised(problem.evaluate(x)))
-            .collect_into_vec(out);
+        self.evaluate_rows_cost_bounded(rows, n, f64::INFINITY, out);
     }
 
     /// [`Evaluator::evaluate_rows`] for rows that only matter if they cost less than
@@ -140,18 +124,13 @@ impl<'a> Evaluator<'a> {
         let dim = self.dimension();
         let allowed = self.admit_rows(rows, n);
         out.clear();
-        let one = |x: &[f64]| {
-            problem
-                .evaluate_cost_bounded(x, cutoff)
-                .map_or_else(Evaluation::worst, normalised)
-        };
         if dim == 0 {
-            out.extend((0..allowed).map(|_| one(&[])));
+            out.extend((0..allowed).map(|_| cost_bounded(problem, &[], cutoff)));
             return;
         }
         rows[..allowed * dim]
             .par_chunks(dim)
-            .map(one)
+            .map(|x| cost_bounded(problem, x, cutoff))
             .collect_into_vec(out);
     }
 
@@ -288,6 +267,18 @@ impl<'a> Evaluator<'a> {
     #[must_use]
     pub fn is_exhausted(&self) -> bool {
         self.exhausted
+    }
+}
+
+/// `x` evaluated in full (`cutoff` = +inf) or bounded by a cost `cutoff`, normalised; a
+/// bounded evaluation given up is [`Evaluation::worst`].
+fn cost_bounded(problem: &dyn Problem, x: &[f64], cutoff: f64) -> Evaluation {
+    if cutoff == f64::INFINITY {
+        normalised(problem.evaluate(x))
+    } else {
+        problem
+            .evaluate_cost_bounded(x, cutoff)
+            .map_or_else(Evaluation::worst, normalised)
     }
 }
 
