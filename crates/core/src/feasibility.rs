@@ -229,6 +229,8 @@ pub struct ViolationSink {
     pub measure: f64,
     /// The same sum over soft violations (those the profile counts in the cost only).
     pub soft: f64,
+    /// How many violations, hard and soft, were added.
+    pub count: usize,
     pub profile: FeasibilityProfile,
     pub list: Option<Vec<Violation>>,
     /// Each UAV's share of `measure`, on request: a violation counts for its UAV and, for a
@@ -344,6 +346,7 @@ impl ViolationSink {
                 other: at.other,
             });
         }
+        self.count += 1;
         let hard = self.profile.is_hard(kind);
         if hard {
             let m = 1.0 + amount / kind.scale();

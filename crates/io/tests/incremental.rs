@@ -244,3 +244,38 @@ fn bounded_evaluations_give_up_below_the_violation_and_not_above() {
         .unwrap();
     assert_eq!(kept.violation.to_bits(), full.violation.to_bits());
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(40))]
+
+    /// A cost-bounded evaluation (the PSO family's, QPSO's, ABC's and GWO's candidates,
+    /// `Problem::evaluate_cost_bounded`), which may give up after the waypoint terms, the
+    /// flown terms or the communication sweep, either gives up, and then the full cost is
+    /// above the cutoff, or returns the full evaluation bit for bit; cutoffs within 30 % of
+    /// the plan's cost, on warm buffers.
+    #[test]
+    fn a_cost_bounded_evaluation_is_the_full_one_or_gives_up_only_above_the_cutoff(
+        world_index in 0usize..7,
+        seed in any::<u64>(),
+        shares in prop::collection::vec(-0.3f64..0.3, 1..8),
+    ) {
+        let world = &worlds()[world_index];
+        let problem = PlanningProblem::new(world, EncodingKind::Spherical, InitKind::Line);
+        let mut rng = rng_from_seed(seed);
+        let mut x = vec![0.0; problem.dimension()];
+        for share in shares {
+            problem.sample_initial(&mut rng, &mut x);
+            let full = problem.evaluate(&x);
+            let cutoff = full.cost * (1.0 + share);
+            match problem.evaluate_cost_bounded(&x, cutoff) {
+                None => prop_assert!(full.cost > cutoff, "{} <= {cutoff}", full.cost),
+                Some(b) => {
+                    prop_assert_eq!(b.cost.to_bits(), full.cost.to_bits());
+                    prop_assert_eq!(b.violation.to_bits(), full.violation.to_bits());
+                }
+            }
+            let again = problem.evaluate(&x);
+            prop_assert_eq!(again.cost.to_bits(), full.cost.to_bits());
+        }
+    }
+}

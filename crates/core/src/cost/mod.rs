@@ -297,7 +297,9 @@ pub fn assess_bounded(
                 &mut scratch.prox,
                 &mut scratch.prox_out,
             );
-            fleet_terms(world, plan, motion, fleet, sink, f64::INFINITY);
+            fleet_terms(world, plan, motion, fleet, sink, f64::INFINITY, |_, _| {
+                false
+            });
         }
         for u in 0..n {
             let on_waypoints = waypoint_terms(world, u, plan, &scratch.timed, spso_preset, sink);
@@ -353,7 +355,11 @@ fn bounded_terms(
         for r in reports {
             terms += r.raw.weighted(objective).sum();
         }
-        terms + penalty(world, reordered_lower_bound(own.measure + own.soft, own))
+        terms
+            + penalty(
+                world,
+                reordered_lower_bound(own.measure + own.soft, own.count),
+            )
     };
     let mut given_up = false;
     scratch.on_waypoints.resize(n, WaypointTerms::default());
@@ -364,7 +370,7 @@ fn bounded_terms(
             raw: on_waypoints.raw(),
             ..UavReport::default()
         };
-        if reordered_lower_bound(own.measure, &own) > cutoff.violation {
+        if reordered_lower_bound(own.measure, own.count) > cutoff.violation {
             given_up = true;
             break;
         }
@@ -390,7 +396,7 @@ fn bounded_terms(
                 scratch.on_waypoints[u],
                 &mut own,
             );
-            if reordered_lower_bound(own.measure, &own) > cutoff.violation {
+            if reordered_lower_bound(own.measure, own.count) > cutoff.violation {
                 given_up = true;
                 break;
             }
@@ -404,7 +410,31 @@ fn bounded_terms(
                 &mut scratch.prox,
                 &mut scratch.prox_out,
             );
-            given_up = !fleet_terms(world, plan, motion, fleet, sink, cutoff.violation);
+            // After the sweep, the least the plan can cost: all but the obstacle term.
+            let reports = &scratch.reports;
+            let too_costly = |fleet: &ViolationSink, comm_out: &[comm::CommOutcome]| {
+                if cutoff.cost == f64::INFINITY {
+                    return false;
+                }
+                let mut terms = 0.0;
+                for (r, c) in reports.iter().zip(comm_out) {
+                    let mut raw = r.raw;
+                    raw[TermId::Communication] = c.cost;
+                    terms += raw.weighted(objective).sum();
+                }
+                let measure = fleet.measure + own.measure + fleet.soft + own.soft;
+                let count = fleet.count + own.count;
+                terms + penalty(world, reordered_lower_bound(measure, count)) > cutoff.cost
+            };
+            given_up = !fleet_terms(
+                world,
+                plan,
+                motion,
+                fleet,
+                sink,
+                cutoff.violation,
+                too_costly,
+            );
         }
     }
     if !given_up {
@@ -423,8 +453,7 @@ fn bounded_terms(
 /// order than a full assessment's, is at most in that assessment. Rounding makes sums of m
 /// positive terms in two orders differ by at most about 2 m 2^-53 of their value, so
 /// below a million violations a margin of 1e-9 covers it (and beyond, no bound is claimed).
-fn reordered_lower_bound(partial: f64, sink: &ViolationSink) -> f64 {
-    let count = sink.deferred.as_ref().map_or(usize::MAX, Vec::len);
+fn reordered_lower_bound(partial: f64, count: usize) -> f64 {
     if count < 1_000_000 {
         partial * (1.0 - 1e-9)
     } else {
@@ -433,7 +462,9 @@ fn reordered_lower_bound(partial: f64, sink: &ViolationSink) -> f64 {
 }
 
 /// The fleet's terms: the communication sweep, then proximity unless the measure already
-/// exceeds `cutoff`; false when it does after either (given up).
+/// exceeds `cutoff` or `too_costly` says the plan is out of reach given the sweep's
+/// results; false when either stops it, or the measure exceeds `cutoff` after proximity
+/// (given up).
 fn fleet_terms(
     world: &World,
     plan: &Plan,
@@ -441,9 +472,10 @@ fn fleet_terms(
     (comm, comm_out, prox, prox_out): FleetBuffers<'_>,
     sink: &mut ViolationSink,
     cutoff: f64,
+    too_costly: impl Fn(&ViolationSink, &[comm::CommOutcome]) -> bool,
 ) -> bool {
     comm::communication(world, motion, comm, sink, comm_out);
-    if sink.measure > cutoff {
+    if sink.measure > cutoff || too_costly(sink, comm_out) {
         return false;
     }
     proximity::proximity(world, plan, motion, prox, sink, prox_out);
