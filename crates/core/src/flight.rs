@@ -249,14 +249,27 @@ pub struct FlownSegment {
     pub waypoint_segment: usize,
 }
 
+/// The tangent lengths of a flown path through `abs` for turning radius `radius`, into
+/// `out`: [`tangent_lengths`], or zeros when there is no corner to fly or no radius (what
+/// [`flown_polyline`] expects).
+pub fn turn_tangents(abs: &[DVec3], radius: f64, out: &mut Vec<f64>) {
+    if abs.len() < 3 || radius <= 0.0 {
+        out.clear();
+        out.resize(abs.len(), 0.0);
+    } else {
+        tangent_lengths(abs, radius, out);
+    }
+}
+
 /// The flown polyline through the waypoints `abs` for turning radius `radius` into `out`,
-/// and where each of its segments comes from into `from`. Overfull segments have their
-/// tangent lengths scaled down to fit (a tighter turn, which [`check_turn_radius`]
-/// reports).
+/// and where each of its segments comes from into `from`; `tangents` are the corners'
+/// tangent lengths, [`turn_tangents`] of the same waypoints and radius (computed once for
+/// the turning-radius check too). Overfull segments have their tangent lengths scaled down
+/// to fit (a tighter turn, which [`check_turn_radius`] reports).
 pub fn flown_polyline(
     abs: &[DVec3],
     radius: f64,
-    tangents: &mut Vec<f64>,
+    tangents: &[f64],
     out: &mut Vec<DVec3>,
     from: &mut Vec<FlownSegment>,
 ) {
@@ -264,8 +277,6 @@ pub fn flown_polyline(
     from.clear();
     let n = abs.len();
     if n < 3 || radius <= 0.0 {
-        tangents.clear();
-        tangents.resize(n, 0.0);
         out.extend_from_slice(abs);
         from.extend((0..n.saturating_sub(1)).map(|k| FlownSegment {
             arc: false,
@@ -273,7 +284,7 @@ pub fn flown_polyline(
         }));
         return;
     }
-    tangent_lengths(abs, radius, tangents);
+    debug_assert_eq!(tangents.len(), n, "tangents of the same waypoints");
     // Scale of each segment: how much of its ends' tangent lengths fit.
     let fit = |k: usize| {
         let need = tangents[k] + tangents[k + 1];
@@ -488,7 +499,8 @@ mod tests {
             DVec3::new(200.0, 200.0, 100.0),
         ];
         let (mut t, mut out, mut from) = (Vec::new(), Vec::new(), Vec::new());
-        flown_polyline(&abs, 50.0, &mut t, &mut out, &mut from);
+        turn_tangents(&abs, 50.0, &mut t);
+        flown_polyline(&abs, 50.0, &t, &mut out, &mut from);
         assert_eq!(out[0], abs[0]);
         assert_eq!(*out.last().unwrap(), abs[2]);
         assert_eq!(from.len(), out.len() - 1);
@@ -506,7 +518,9 @@ mod tests {
             .fold(f64::INFINITY, f64::min);
         assert!((nearest - 50.0 * (2f64.sqrt() - 1.0)).abs() < SAGITTA_M + 1e-6);
         // Radius 0: the waypoints themselves.
-        flown_polyline(&abs, 0.0, &mut t, &mut out, &mut from);
+        turn_tangents(&abs, 0.0, &mut t);
+        assert_eq!(t, [0.0; 3]);
+        flown_polyline(&abs, 0.0, &t, &mut out, &mut from);
         assert_eq!(out, abs);
     }
 }

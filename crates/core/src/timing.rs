@@ -51,7 +51,8 @@ pub struct TimedPath {
     /// Of a flown path ([`TimedPlan::fill_flown`]): where each segment comes from (an arc
     /// chord or a straight piece, of which waypoint segment). Empty for a waypoint path.
     pub flown: Vec<crate::flight::FlownSegment>,
-    /// Of a flown path: the tangent length R tan(theta / 2) of each waypoint's turn.
+    /// Of a flown path: the tangent length R tan(theta / 2) of each waypoint's turn
+    /// ([`crate::flight::turn_tangents`]).
     pub tangents: Vec<f64>,
 }
 
@@ -205,11 +206,13 @@ impl Default for TimedPlan {
 }
 
 /// The inputs of one UAV's flown geometry: its turning radius and waypoints (absolute
-/// altitudes), as bits so that -0.0 and 0.0 (or two NaNs) are told apart.
+/// altitudes), as bits so that -0.0 and 0.0 (or two NaNs) are told apart. Its tangent
+/// lengths are of these inputs; its geometry too once `built`.
 #[derive(Debug, Clone, Default)]
 struct FlownSource {
     radius: u64,
     abs: Vec<[u64; 3]>,
+    built: bool,
 }
 
 impl FlownSource {
@@ -223,10 +226,12 @@ impl FlownSource {
             && self.abs.iter().zip(abs).all(|(a, b)| *a == Self::bits(*b))
     }
 
+    /// New inputs: their tangents are to be computed, their geometry built.
     fn set(&mut self, radius: f64, abs: &[DVec3]) {
         self.radius = radius.to_bits();
         self.abs.clear();
         self.abs.extend(abs.iter().map(|v| Self::bits(*v)));
+        self.built = false;
     }
 }
 
@@ -252,6 +257,29 @@ impl TimedPlan {
         self.schedule(world);
     }
 
+    /// The tangent lengths of the turns of `waypoints` (each UAV's turning radius) into
+    /// `paths`, the first half of [`TimedPlan::fill_flown`]: enough for the turning-radius
+    /// check, which a bounded assessment makes before it builds any arc. A UAV whose
+    /// waypoints are bit for bit those of the previous fill keeps its tangents; the others'
+    /// geometry is out of date until [`TimedPlan::fill_flown`].
+    pub fn fill_tangents(&mut self, world: &World, waypoints: &TimedPlan) {
+        let n = waypoints.paths.len();
+        if self.flown_from.len() != self.paths.len() {
+            self.flown_from.clear();
+        }
+        self.paths.resize_with(n, TimedPath::default);
+        self.flown_from.resize_with(n, FlownSource::default);
+        let sources = self.paths.iter_mut().zip(&mut self.flown_from);
+        for (u, ((tp, source), wp)) in sources.zip(&waypoints.paths).enumerate() {
+            let radius = world.spec.uavs[u].turn_radius;
+            if source.is(radius, &wp.abs) {
+                continue;
+            }
+            crate::flight::turn_tangents(&wp.abs, radius, &mut tp.tangents);
+            source.set(radius, &wp.abs);
+        }
+    }
+
     /// The flown trajectory of `waypoints` (an arc of each UAV's turning radius through
     /// every corner, [`crate::flight`]), timed by the same policy on its own lengths.
     ///
@@ -260,29 +288,24 @@ impl TimedPlan {
     /// has (the optimizers that change one UAV at a time rebuild one of n); only the timing
     /// is redone for all. Nothing else may write the geometry of `paths` in between.
     pub fn fill_flown(&mut self, world: &World, waypoints: &TimedPlan) {
-        let n = waypoints.paths.len();
+        self.fill_tangents(world, waypoints);
         self.pace = waypoints.pace;
-        if self.flown_from.len() != self.paths.len() {
-            self.flown_from.clear();
-        }
-        self.paths.resize_with(n, TimedPath::default);
-        self.flown_from.resize_with(n, FlownSource::default);
         let sources = self.paths.iter_mut().zip(&mut self.flown_from);
         for (u, ((tp, source), wp)) in sources.zip(&waypoints.paths).enumerate() {
             tp.delay = wp.delay;
-            let radius = world.spec.uavs[u].turn_radius;
-            if !tp.abs.is_empty() && source.is(radius, &wp.abs) {
+            if source.built {
                 continue;
             }
+            let radius = world.spec.uavs[u].turn_radius;
             crate::flight::flown_polyline(
                 &wp.abs,
                 radius,
-                &mut tp.tangents,
+                &tp.tangents,
                 &mut tp.abs,
                 &mut tp.flown,
             );
             tp.fill_lengths();
-            source.set(radius, &wp.abs);
+            source.built = true;
         }
         self.schedule(world);
     }

@@ -279,3 +279,45 @@ proptest! {
         }
     }
 }
+
+/// A bounded assessment fills a UAV's turn tangents before any arc and may give up there
+/// (`TimedPlan::fill_tangents`); the arcs built afterwards, for that plan or another, are
+/// those of a fresh flown plan bit for bit.
+#[test]
+fn tangents_filled_ahead_of_the_arcs_leave_the_flown_paths_as_fresh_ones() {
+    use swarmplan_core::timing::TimedPlan;
+    let world = &worlds()[0];
+    assert!(world.flies_arcs());
+    let problem = PlanningProblem::new(world, EncodingKind::Spherical, InitKind::Line);
+    let mut rng = rng_from_seed(3);
+    let mut x = vec![0.0; problem.dimension()];
+    let mut draw = || {
+        problem.sample_initial(&mut rng, &mut x);
+        problem.decode(&x)
+    };
+    let (a, b) = (draw(), draw());
+    let (wa, wb) = (TimedPlan::new(world, &a), TimedPlan::new(world, &b));
+    let (fresh_a, fresh_b) = (TimedPlan::flown(world, &a), TimedPlan::flown(world, &b));
+    let same = |warm: &TimedPlan, fresh: &TimedPlan, arcs: bool| {
+        for (w, f) in warm.paths.iter().zip(&fresh.paths) {
+            let bits = |v: &[f64]| v.iter().map(|t| t.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&w.tangents), bits(&f.tangents));
+            if arcs {
+                assert_eq!(w.abs, f.abs);
+                assert_eq!(w.flown, f.flown);
+                assert_eq!(w.arrival.to_bits(), f.arrival.to_bits());
+            }
+        }
+    };
+    let mut warm = TimedPlan::default();
+    warm.fill_flown(world, &wa);
+    same(&warm, &fresh_a, true);
+    // b's tangents only, as in an assessment of b given up on the turning radius.
+    warm.fill_tangents(world, &wb);
+    same(&warm, &fresh_b, false);
+    warm.fill_flown(world, &wa);
+    same(&warm, &fresh_a, true);
+    warm.fill_tangents(world, &wb);
+    warm.fill_flown(world, &wb);
+    same(&warm, &fresh_b, true);
+}

@@ -248,18 +248,21 @@ impl Cutoff {
 /// [`assess_into`], given up (`None`) once the plan is known to exceed `cutoff`. Every
 /// violation adds at least 1 to the measure and floating-point addition is monotone in each
 /// argument, so a partial sum, or a sum over some of the violations, never exceeds the final
-/// one; likewise the total cost with the communication and obstacle terms (both >= 0) still
-/// at zero, and the penalty of the violations found so far, never exceed the final total.
-/// A plan given up would have ended above `cutoff`, so an optimizer that only needs to know
-/// whether a candidate beats one at the cutoff (by Deb's rules or by penalised cost) learns
-/// that exactly, for less.
+/// one (a sum taken in another order may, by rounding, and is compared with a margin:
+/// [`reordered_lower_bound`]); likewise the total cost with the terms not yet known (all
+/// >= 0) at zero, and the penalty of the violations found so far, never exceed the final
+/// total. A plan given up would have ended above `cutoff`, so an optimizer that only needs
+/// to know whether a candidate beats one at the cutoff (by Deb's rules or by penalised cost)
+/// learns that exactly, for less.
 ///
 /// With a cutoff (no violation list wanted, and not under the `spso` preset, which has no
-/// fleet terms to skip) the UAVs' own terms (threats, turns, climb, clearance, battery: the
-/// cheaper part) are assessed first, into a sink that records their violations, with the
-/// violation checked after each UAV and the cost after all of them; then the communication
-/// sweep and proximity, checked after each; then the recorded violations are added to `sink`
-/// in the order [`assess_into`] adds them, so a plan not given up gets the same bits. With
+/// fleet terms to skip) the UAVs' own terms come first, into a sink that records their
+/// violations: every UAV's terms on its waypoints (threat band, altitude, turns, climb,
+/// turning radius), checked after each UAV and for cost after all; then the flown paths are
+/// built and every UAV's terms on them (arc threats, clearance, speed, battery), checked
+/// likewise; then the communication sweep (checked for violation and cost) and proximity
+/// (checked for violation); then the recorded violations are added to `sink` in the order
+/// [`assess_into`] adds them, so a plan not given up gets the same bits. With
 /// [`Cutoff::NONE`] it is [`assess_into`], operation for operation.
 pub fn assess_bounded(
     world: &World,
@@ -301,8 +304,10 @@ pub fn assess_bounded(
                 false
             });
         }
+        let flown = flies_arcs.then_some(&scratch.flown);
         for u in 0..n {
-            let on_waypoints = waypoint_terms(world, u, plan, &scratch.timed, spso_preset, sink);
+            let on_waypoints =
+                waypoint_terms(world, u, plan, (&scratch.timed, flown), spso_preset, sink);
             scratch.reports[u] = flown_terms(
                 world,
                 u,
@@ -363,8 +368,12 @@ fn bounded_terms(
     };
     let mut given_up = false;
     scratch.on_waypoints.resize(n, WaypointTerms::default());
+    if flies_arcs {
+        scratch.flown.fill_tangents(world, &scratch.timed);
+    }
+    let flown = flies_arcs.then_some(&scratch.flown);
     for u in 0..n {
-        let on_waypoints = waypoint_terms(world, u, plan, &scratch.timed, false, &mut own);
+        let on_waypoints = waypoint_terms(world, u, plan, (&scratch.timed, flown), false, &mut own);
         scratch.on_waypoints[u] = on_waypoints;
         scratch.reports[u] = UavReport {
             raw: on_waypoints.raw(),
@@ -490,9 +499,10 @@ type FleetBuffers<'a> = (
     &'a mut Vec<f64>,
 );
 
-/// What a UAV's waypoints alone decide: SPSO's terms and the turn and climb limits
-/// (SPSO's terms, turn and climb limits are properties of the waypoints; what follows the
-/// UAV in time and space, in [`flown_terms`], is of what is flown).
+/// What a UAV's waypoints alone decide: SPSO's terms, the turn and climb limits and, in a
+/// world that flies arcs, the turning radius (whether the corners' arcs fit their
+/// segments); what follows the UAV in time and space, in [`flown_terms`], is of what is
+/// flown.
 #[derive(Debug, Clone, Copy, Default)]
 struct WaypointTerms {
     spso: spso::SpsoTerms,
@@ -513,19 +523,32 @@ impl WaypointTerms {
 }
 
 /// UAV `u`'s terms and constraints on its waypoints, the first part of its own terms.
+/// `flown` holds the turns' tangent lengths when the world flies arcs
+/// ([`TimedPlan::fill_tangents`]).
 fn waypoint_terms(
     world: &World,
     u: usize,
     plan: &Plan,
-    timed: &TimedPlan,
+    (timed, flown): (&TimedPlan, Option<&TimedPlan>),
     spso_preset: bool,
     sink: &mut ViolationSink,
 ) -> WaypointTerms {
     let tp = &timed.paths[u];
-    WaypointTerms {
+    let terms = WaypointTerms {
         spso: spso::spso_terms(world, u, &plan.uavs[u], tp, spso_preset, sink),
         kin: kinematics::kinematics(world, u, tp, !spso_preset, sink),
+    };
+    if let Some(flown) = flown {
+        crate::flight::check_turn_radius(
+            u,
+            &tp.abs,
+            |k| tp.time_at(k),
+            world.spec.uavs[u].turn_radius,
+            &flown.paths[u].tangents,
+            sink,
+        );
     }
+    terms
 }
 
 /// The rest of UAV `u`'s own terms and constraints, on what it flies (everything but
@@ -545,14 +568,6 @@ fn flown_terms(
     let fp = &motion.paths[u];
     let kin = &on_waypoints.kin;
     if flies_arcs {
-        crate::flight::check_turn_radius(
-            u,
-            &tp.abs,
-            |k| tp.time_at(k),
-            world.spec.uavs[u].turn_radius,
-            &fp.tangents,
-            sink,
-        );
         crate::flight::check_arc_threats(world, u, fp, sink);
     }
     let min_clearance = clearance::check_clearance(world, u, (path, tp), fp, exact, sink);
