@@ -249,7 +249,7 @@ impl Cutoff {
 /// violation adds at least 1 to the measure and floating-point addition is monotone in each
 /// argument, so a partial sum, or a sum over some of the violations, never exceeds the final
 /// one (a sum taken in another order may, by rounding, and is compared with a margin:
-/// [`reordered_lower_bound`]); likewise the total cost with the terms not yet known (none
+/// `reordered_lower_bound`); likewise the total cost with the terms not yet known (none
 /// of them negative) at zero, and the penalty of the violations found so far, never exceed
 /// the final total. A plan given up would have ended above `cutoff`, so an optimizer that only needs
 /// to know whether a candidate beats one at the cutoff (by Deb's rules or by penalised cost)
