@@ -99,14 +99,17 @@ impl PathEncoding for Spherical {
             let (psi, phi) = rest.split_at(n);
             let mut p = path.waypoints[0];
             for k in 0..n {
-                let horizontal = r[k] * psi[k].cos();
+                // One `sincos` per angle (glibc's equals its `sin` and `cos` bit for bit).
+                let (psi_sin, psi_cos) = psi[k].sin_cos();
+                let (phi_sin, phi_cos) = phi[k].sin_cos();
+                let horizontal = r[k] * psi_cos;
                 let (ux, uy) = match self.convention {
-                    AngleConvention::Consistent => (phi[k].cos(), phi[k].sin()),
-                    AngleConvention::Spso => (phi[k].sin(), phi[k].cos()),
+                    AngleConvention::Consistent => (phi_cos, phi_sin),
+                    AngleConvention::Spso => (phi_sin, phi_cos),
                 };
                 p.x = (p.x + horizontal * ux).clamp(f.x[0], f.x[1]);
                 p.y = (p.y + horizontal * uy).clamp(f.y[0], f.y[1]);
-                p.z = (p.z + r[k] * psi[k].sin()).clamp(f.z[0], f.z[1]);
+                p.z = (p.z + r[k] * psi_sin).clamp(f.z[0], f.z[1]);
                 path.waypoints[k + 1] = p;
             }
         }
