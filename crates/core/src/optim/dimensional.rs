@@ -30,10 +30,13 @@ pub struct Exemplar {
 /// Greedy dimensional learning (Xu et al. 2019): starting from `pbest` (evaluation
 /// `pbest_eval`), for each dimension j where the current vector differs from `guide`, try
 /// the vector with j set to `guide[j]` and keep it if its cost is strictly lower. At most
-/// D evaluations; never worse than `pbest`. `evaluate` returning `None` (budget spent)
-/// stops the pass, keeping what was accepted. Writes the result into `out`.
+/// D evaluations; never worse than `pbest`. `evaluate(x, cost)` is asked only whether `x`
+/// costs less than `cost`, so it may give up on a candidate known to cost more (returning
+/// [`Evaluation::worst`], as [`crate::problem::Problem::evaluate_cost_bounded`] does).
+/// `evaluate` returning `None` (budget spent) stops the pass, keeping what was accepted.
+/// Writes the result into `out`.
 pub fn build_exemplar_into(
-    evaluate: &mut impl FnMut(&[f64]) -> Option<Evaluation>,
+    evaluate: &mut impl FnMut(&[f64], f64) -> Option<Evaluation>,
     pbest: &[f64],
     pbest_eval: Evaluation,
     guide: &[f64],
@@ -51,7 +54,7 @@ pub fn build_exemplar_into(
             continue;
         }
         out[j] = gj;
-        let Some(e) = evaluate(out) else {
+        let Some(e) = evaluate(out, stats.eval.cost) else {
             out[j] = old;
             break;
         };
@@ -69,7 +72,7 @@ pub fn build_exemplar_into(
 /// [`build_exemplar_into`] returning a new vector.
 #[must_use]
 pub fn build_exemplar(
-    mut evaluate: impl FnMut(&[f64]) -> Option<Evaluation>,
+    mut evaluate: impl FnMut(&[f64], f64) -> Option<Evaluation>,
     pbest: &[f64],
     pbest_eval: Evaluation,
     guide: &[f64],
@@ -94,7 +97,7 @@ mod tests {
         assert_eq!(sphere(&pbest), 30.0);
         assert_eq!(sphere(&gbest), 28.0);
         let ex = build_exemplar(
-            |x| Some(Evaluation::new(sphere(x), 0.0)),
+            |x, _| Some(Evaluation::new(sphere(x), 0.0)),
             &pbest,
             Evaluation::new(30.0, 0.0),
             &gbest,
@@ -111,7 +114,7 @@ mod tests {
         let guide = [1.0, 0.0, 0.0];
         let mut calls = 0;
         let ex = build_exemplar(
-            |x| {
+            |x, _| {
                 calls += 1;
                 (calls <= 1).then(|| Evaluation::new(sphere(x), 0.0))
             },
@@ -123,5 +126,37 @@ mod tests {
         assert_eq!(ex.x, vec![1.0, 0.0, 3.0]);
         assert_eq!(ex.stats.evaluations, 1);
         assert_eq!(ex.stats.eval.cost, 10.0);
+    }
+
+    /// Each probe is asked only to beat the cost accepted so far, so an evaluation that gives
+    /// up above it changes nothing.
+    #[test]
+    fn probes_are_bounded_by_the_cost_accepted_so_far() {
+        let pbest = [1.0, 0.0, 3.0, 2.0, 4.0];
+        let gbest = [2.0, 2.0, 2.0, 4.0, 0.0];
+        let plain = build_exemplar(
+            |x, _| Some(Evaluation::new(sphere(x), 0.0)),
+            &pbest,
+            Evaluation::new(30.0, 0.0),
+            &gbest,
+        );
+        let mut cutoffs = Vec::new();
+        let bounded = build_exemplar(
+            |x, cutoff| {
+                cutoffs.push(cutoff);
+                let cost = sphere(x);
+                Some(if cost > cutoff {
+                    Evaluation::worst()
+                } else {
+                    Evaluation::new(cost, 0.0)
+                })
+            },
+            &pbest,
+            Evaluation::new(30.0, 0.0),
+            &gbest,
+        );
+        assert_eq!(bounded, plain);
+        // Probes 1, 2 and 4 are refused (costs 33, 34 and 37), 3 and 5 accepted (25, then 9).
+        assert_eq!(cutoffs, [30.0, 30.0, 30.0, 25.0, 25.0]);
     }
 }

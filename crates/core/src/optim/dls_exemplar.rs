@@ -116,7 +116,7 @@ impl DlsExemplar {
         };
         let out = row_mut(&mut self.exemplar, i, dim);
         let stats = build_exemplar_into(
-            &mut |x| ev.evaluate(x),
+            &mut |x, cost| ev.evaluate_cost_bounded(x, cost),
             row(&s.pbest, i, dim),
             s.pbest_eval[i],
             guide,

@@ -136,7 +136,7 @@ impl DlsPaper {
         let s = &mut self.swarm;
         let dim = s.dim;
         let stats = build_exemplar_into(
-            &mut |x| ev.evaluate(x),
+            &mut |x, cost| ev.evaluate_cost_bounded(x, cost),
             row(&s.pbest, i, dim),
             s.pbest_eval[i],
             &s.gbest.x,
