@@ -32,8 +32,13 @@ pub struct PlanningProblem<'w> {
 /// turn two converging approaches apart at the edge of the landing zone.
 pub const NUDGE_SEPARATIONS: f64 = 2.0;
 
+/// Slots of [`Problem::evaluate_cost_bounded_in`] with buffers of their own (per thread);
+/// higher slots share the thread's common buffers. ABC's default has 25 food sources.
+pub const BUFFER_SLOTS: usize = 64;
+
 thread_local! {
     static BUFFERS: RefCell<(Plan, Scratch)> = RefCell::new((Plan::default(), Scratch::default()));
+    static SLOT_BUFFERS: RefCell<Vec<(Plan, Scratch)>> = const { RefCell::new(Vec::new()) };
 }
 
 impl<'w> PlanningProblem<'w> {
@@ -125,6 +130,27 @@ impl<'w> PlanningProblem<'w> {
 }
 
 impl PlanningProblem<'_> {
+    /// [`Problem::evaluate_cost_bounded`] on the given buffers.
+    fn cost_bounded_on(
+        &self,
+        x: &[f64],
+        cutoff: f64,
+        plan: &mut Plan,
+        scratch: &mut Scratch,
+    ) -> Option<Evaluation> {
+        self.encoding.decode_into(x, plan);
+        let mut sink = ViolationSink::new(self.world.spec.planning.profile);
+        assess_bounded(
+            self.world,
+            plan,
+            scratch,
+            &mut sink,
+            false,
+            Cutoff::cost(cutoff),
+        )
+        .map(|(cost, violation)| Evaluation::new(cost, violation))
+    }
+
     /// A pace uniform in the scenario's range when it is free (no draw otherwise, so runs
     /// on a fixed pace keep their random streams).
     fn draw_pace(&self, rng: &mut Rng, plan: &mut Plan) {
@@ -170,17 +196,24 @@ impl Problem for PlanningProblem<'_> {
         BUFFERS.with(|b| {
             let mut b = b.borrow_mut();
             let (plan, scratch) = &mut *b;
-            self.encoding.decode_into(x, plan);
-            let mut sink = ViolationSink::new(self.world.spec.planning.profile);
-            assess_bounded(
-                self.world,
-                plan,
-                scratch,
-                &mut sink,
-                false,
-                Cutoff::cost(cutoff),
-            )
-            .map(|(cost, violation)| Evaluation::new(cost, violation))
+            self.cost_bounded_on(x, cutoff, plan, scratch)
+        })
+    }
+
+    /// The slot's buffers keep the flown arcs and the pair terms of its last point, so a
+    /// candidate that changes one UAV of it rebuilds one path and sweeps n - 1 pairs
+    /// (the same bits: the caches are pure functions of their inputs).
+    fn evaluate_cost_bounded_in(&self, x: &[f64], cutoff: f64, slot: usize) -> Option<Evaluation> {
+        if slot >= BUFFER_SLOTS {
+            return self.evaluate_cost_bounded(x, cutoff);
+        }
+        SLOT_BUFFERS.with(|b| {
+            let mut slots = b.borrow_mut();
+            if slots.len() <= slot {
+                slots.resize_with(slot + 1, Default::default);
+            }
+            let (plan, scratch) = &mut slots[slot];
+            self.cost_bounded_on(x, cutoff, plan, scratch)
         })
     }
 

@@ -173,6 +173,16 @@ pub trait Problem: Sync {
         Some(self.evaluate(x))
     }
 
+    /// [`Problem::evaluate_cost_bounded`] on buffers kept for `slot`, the caller's index of
+    /// the point `x` was made from (an ABC food source): a problem whose evaluation reuses
+    /// the work of the previous one on the same buffers does less when `x` is a small change
+    /// of the slot's previous point than of whatever was evaluated last. Must return exactly
+    /// what [`Problem::evaluate_cost_bounded`] returns. The default ignores the slot.
+    fn evaluate_cost_bounded_in(&self, x: &[f64], cutoff: f64, slot: usize) -> Option<Evaluation> {
+        let _ = slot;
+        self.evaluate_cost_bounded(x, cutoff)
+    }
+
     /// [`Problem::evaluate_blocks`] for a caller that only needs to know whether `x` beats,
     /// by Deb's rules, a candidate whose violation is `cutoff`: `None` (and `by_block`
     /// unspecified) means the violation is known to exceed `cutoff`, so it does not. Must

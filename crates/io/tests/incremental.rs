@@ -321,3 +321,45 @@ fn tangents_filled_ahead_of_the_arcs_leave_the_flown_paths_as_fresh_ones() {
     warm.fill_flown(world, &wb);
     same(&warm, &fresh_b, true);
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(30))]
+
+    /// Evaluations on a slot's own buffers (ABC's candidates, on their food source's:
+    /// `Problem::evaluate_cost_bounded_in`) are those on the common buffers: each candidate
+    /// a one-coordinate change of its slot's point, as ABC makes them, slots drawn at random
+    /// (one beyond the slots with buffers of their own).
+    #[test]
+    fn an_evaluation_on_a_slots_buffers_is_the_one_on_the_common_buffers(
+        world_index in 0usize..7,
+        seed in any::<u64>(),
+        moves in prop::collection::vec((0usize..3, any::<u64>(), -0.2f64..0.2), 1..12),
+    ) {
+        use rand::Rng as _;
+        let world = &worlds()[world_index];
+        let problem = PlanningProblem::new(world, EncodingKind::Spherical, InitKind::Line);
+        let mut rng = rng_from_seed(seed);
+        let dim = problem.dimension();
+        let slots = [0, 1, swarmplan_core::planning::BUFFER_SLOTS + 1];
+        let mut points = vec![vec![0.0; dim]; slots.len()];
+        for p in &mut points {
+            problem.sample_initial(&mut rng, p);
+        }
+        for (which, draw, share) in moves {
+            let mut local = rng_from_seed(draw);
+            let x = &mut points[which];
+            let j = local.random_range(0..dim);
+            let b = problem.bounds()[j];
+            x[j] = (x[j] + share * (b.hi - b.lo)).clamp(b.lo, b.hi);
+            let full = problem.evaluate(x);
+            let cutoff = if share > 0.0 { f64::INFINITY } else { full.cost * (1.0 + share) };
+            match problem.evaluate_cost_bounded_in(x, cutoff, slots[which]) {
+                None => prop_assert!(full.cost > cutoff),
+                Some(e) => {
+                    prop_assert_eq!(e.cost.to_bits(), full.cost.to_bits());
+                    prop_assert_eq!(e.violation.to_bits(), full.violation.to_bits());
+                }
+            }
+        }
+    }
+}

@@ -145,8 +145,9 @@ impl Abc {
         let old = x[j];
         x[j] = into_bound(&ev.bounds()[j], old + phi * (old - xkj));
         // The candidate matters only if it beats source i, which costs no less than the best
-        // so far, so the evaluation may stop once its cost is known to exceed source i's.
-        let Some(e) = ev.evaluate_cost_bounded(x, self.eval[i].cost) else {
+        // so far, so the evaluation may stop once its cost is known to exceed source i's. It
+        // is one coordinate away from source i, so it is evaluated on source i's buffers.
+        let Some(e) = ev.evaluate_cost_bounded_in(x, self.eval[i].cost, i) else {
             x[j] = old;
             return None;
         };

@@ -102,6 +102,22 @@ impl<'a> Evaluator<'a> {
         Some(cost_bounded(self.problem, x, cutoff))
     }
 
+    /// [`Evaluator::evaluate_cost_bounded`] on the problem's buffers for `slot`
+    /// ([`Problem::evaluate_cost_bounded_in`]): the same result, counted the same.
+    pub fn evaluate_cost_bounded_in(
+        &mut self,
+        x: &[f64],
+        cutoff: f64,
+        slot: usize,
+    ) -> Option<Evaluation> {
+        self.admit(x)?;
+        Some(
+            self.problem
+                .evaluate_cost_bounded_in(x, cutoff, slot)
+                .map_or_else(Evaluation::worst, normalised),
+        )
+    }
+
     /// Evaluates the first `n` rows of `rows` (each [`Evaluator::dimension`] long) in
     /// parallel, as many as the budget allows (the first ones), into `out` in row order; a
     /// row the budget refused has no entry, so `out.len()` says how many were evaluated.
