@@ -10,6 +10,7 @@
 //! [`assess`] is the one entry point: the optimizer's hot path and the report use the same
 //! code, the report merely asks for the violation list and exact clearances.
 
+mod bounded;
 pub mod clearance;
 pub mod comm;
 pub mod coverage;
@@ -20,6 +21,7 @@ pub mod safety;
 pub mod spso;
 pub mod term;
 
+pub use bounded::Cutoff;
 pub use term::{TermId, Terms, TERM_COUNT};
 
 use serde::{Deserialize, Serialize};
@@ -205,51 +207,11 @@ pub fn assess_into(
         .unwrap_or((f64::INFINITY, f64::INFINITY))
 }
 
-/// What a bounded assessment ([`assess_bounded`]) may give up above: a plan whose violation
-/// measure exceeds `violation`, or whose total cost exceeds `cost`, is of no use to the
-/// caller (+inf: no bound).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Cutoff {
-    pub violation: f64,
-    pub cost: f64,
-}
-
-impl Cutoff {
-    /// No bound: a full assessment.
-    pub const NONE: Self = Self {
-        violation: f64::INFINITY,
-        cost: f64::INFINITY,
-    };
-
-    /// Only plans with a violation measure up to `v` matter (Deb's rules against one whose
-    /// violation is `v`).
-    #[must_use]
-    pub const fn violation(v: f64) -> Self {
-        Self {
-            violation: v,
-            ..Self::NONE
-        }
-    }
-
-    /// Only plans with a total cost up to `c` matter (penalised cost against one costing `c`).
-    #[must_use]
-    pub const fn cost(c: f64) -> Self {
-        Self {
-            cost: c,
-            ..Self::NONE
-        }
-    }
-
-    fn is_none(self) -> bool {
-        self.violation == f64::INFINITY && self.cost == f64::INFINITY
-    }
-}
-
 /// [`assess_into`], given up (`None`) once the plan is known to exceed `cutoff`. Every
 /// violation adds at least 1 to the measure and floating-point addition is monotone in each
 /// argument, so a partial sum, or a sum over some of the violations, never exceeds the final
 /// one (a sum taken in another order may, by rounding, and is compared with a margin:
-/// `reordered_lower_bound`); likewise the total cost with the terms not yet known (none
+/// `bounded::reordered_lower_bound`); likewise the total cost with the terms not yet known (none
 /// of them negative) at zero, and the penalty of the violations found so far, never exceed
 /// the final total. A plan given up would have ended above `cutoff`, so an optimizer that only needs
 /// to know whether a candidate beats one at the cutoff (by Deb's rules or by penalised cost)
@@ -281,7 +243,7 @@ pub fn assess_bounded(
     scratch.prox_out.resize(n, 0.0);
     // Under the `spso` preset there is no fleet term to skip: nothing to gain.
     if !cutoff.is_none() && !sink.is_collecting() && !spso_preset {
-        if !bounded_terms(world, plan, scratch, sink, exact, cutoff) {
+        if !bounded::bounded_terms(world, plan, scratch, sink, exact, cutoff) {
             return None;
         }
     } else {
@@ -334,140 +296,6 @@ pub fn assess_bounded(
     let total = terms_cost + penalty(world, violation + sink.soft);
     let total = if total.is_nan() { f64::INFINITY } else { total };
     Some((total, violation))
-}
-
-/// The bounded part of [`assess_bounded`]: every UAV's terms on its waypoints, then (the
-/// flown paths built only now) its terms on what it flies, then the fleet's terms, giving
-/// up (false) as soon as the plan is known to exceed `cutoff`. The own violations go to a
-/// deferring sink and are replayed into `sink` after the fleet's, UAV by UAV (waypoint
-/// terms, then flown terms), the order of a full assessment.
-fn bounded_terms(
-    world: &World,
-    plan: &Plan,
-    scratch: &mut Scratch,
-    sink: &mut ViolationSink,
-    exact: bool,
-    cutoff: Cutoff,
-) -> bool {
-    let n = plan.uavs.len();
-    let flies_arcs = world.flies_arcs();
-    let objective = &world.spec.objective;
-    let mut own = ViolationSink::new(sink.profile).deferring(std::mem::take(&mut scratch.deferred));
-    // The least the plan can cost: its terms known so far (the rest are >= 0) and the
-    // penalty of the violations found so far.
-    let least_cost = |reports: &[UavReport], own: &ViolationSink| {
-        let mut terms = 0.0;
-        for r in reports {
-            terms += r.raw.weighted(objective).sum();
-        }
-        terms
-            + penalty(
-                world,
-                reordered_lower_bound(own.measure + own.soft, own.count),
-            )
-    };
-    let mut given_up = false;
-    scratch.on_waypoints.resize(n, WaypointTerms::default());
-    if flies_arcs {
-        scratch.flown.fill_tangents(world, &scratch.timed);
-    }
-    let flown = flies_arcs.then_some(&scratch.flown);
-    for u in 0..n {
-        let on_waypoints = waypoint_terms(world, u, plan, (&scratch.timed, flown), false, &mut own);
-        scratch.on_waypoints[u] = on_waypoints;
-        scratch.reports[u] = UavReport {
-            raw: on_waypoints.raw(),
-            ..UavReport::default()
-        };
-        if reordered_lower_bound(own.measure, own.count) > cutoff.violation {
-            given_up = true;
-            break;
-        }
-    }
-    given_up = given_up
-        || (cutoff.cost < f64::INFINITY && least_cost(&scratch.reports, &own) > cutoff.cost);
-    if !given_up {
-        if flies_arcs {
-            scratch.flown.fill_flown(world, &scratch.timed);
-        }
-        let motion = if flies_arcs {
-            &scratch.flown
-        } else {
-            &scratch.timed
-        };
-        for u in 0..n {
-            scratch.reports[u] = flown_terms(
-                world,
-                u,
-                plan,
-                (&scratch.timed, motion),
-                (flies_arcs, exact),
-                scratch.on_waypoints[u],
-                &mut own,
-            );
-            if reordered_lower_bound(own.measure, own.count) > cutoff.violation {
-                given_up = true;
-                break;
-            }
-        }
-        given_up = given_up
-            || (cutoff.cost < f64::INFINITY && least_cost(&scratch.reports, &own) > cutoff.cost);
-        if !given_up {
-            let fleet = (
-                &mut scratch.comm,
-                &mut scratch.comm_out,
-                &mut scratch.prox,
-                &mut scratch.prox_out,
-            );
-            // After the sweep, the least the plan can cost: all but the obstacle term.
-            let reports = &scratch.reports;
-            let too_costly = |fleet: &ViolationSink, comm_out: &[comm::CommOutcome]| {
-                if cutoff.cost == f64::INFINITY {
-                    return false;
-                }
-                let mut terms = 0.0;
-                for (r, c) in reports.iter().zip(comm_out) {
-                    let mut raw = r.raw;
-                    raw[TermId::Communication] = c.cost;
-                    terms += raw.weighted(objective).sum();
-                }
-                let measure = fleet.measure + own.measure + fleet.soft + own.soft;
-                let count = fleet.count + own.count;
-                terms + penalty(world, reordered_lower_bound(measure, count)) > cutoff.cost
-            };
-            given_up = !fleet_terms(
-                world,
-                plan,
-                motion,
-                fleet,
-                sink,
-                cutoff.violation,
-                too_costly,
-            );
-        }
-    }
-    if !given_up {
-        // UAV by UAV, waypoint terms before flown terms (a stable sort: within one UAV's
-        // share of either part the order found stands).
-        if let Some(d) = &mut own.deferred {
-            d.sort_by_key(|v| v.uav);
-        }
-        own.replay_into(sink);
-    }
-    scratch.deferred = own.deferred.take().unwrap_or_default();
-    !given_up
-}
-
-/// A lower bound of what `partial`, a sum of some of a plan's violations added in another
-/// order than a full assessment's, is at most in that assessment. Rounding makes sums of m
-/// positive terms in two orders differ by at most about 2 m 2^-53 of their value, so
-/// below a million violations a margin of 1e-9 covers it (and beyond, no bound is claimed).
-fn reordered_lower_bound(partial: f64, count: usize) -> f64 {
-    if count < 1_000_000 {
-        partial * (1.0 - 1e-9)
-    } else {
-        0.0
-    }
 }
 
 /// The fleet's terms: the communication sweep, then proximity unless the measure already

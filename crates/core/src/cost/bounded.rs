@@ -1,0 +1,195 @@
+//! Bounded assessments: a plan assessed only to learn whether it beats a cutoff may be
+//! given up once it is known not to.
+//!
+//! Why: most evaluations of a search ask just that (is the moved particle better than its
+//! pbest, the candidate than its food source, the probe than what was accepted), and most
+//! answers are "no" early: a plan that breaks more constraints on its waypoints than the
+//! cutoff allows need not have its arcs built or its fleet swept. The order of the work
+//! (waypoint terms, then flown terms, then the communication sweep, then proximity) puts
+//! the cheap, decisive parts first; what is found is replayed in the order of a full
+//! assessment, so a plan not given up gets the same bits ([`super::assess_bounded`]).
+
+use super::{
+    comm, fleet_terms, flown_terms, penalty, waypoint_terms, Scratch, TermId, UavReport,
+    WaypointTerms,
+};
+use crate::feasibility::ViolationSink;
+use crate::plan::Plan;
+use crate::world::World;
+
+/// What a bounded assessment ([`super::assess_bounded`]) may give up above: a plan whose
+/// violation measure exceeds `violation`, or whose total cost exceeds `cost`, is of no use
+/// to the caller (+inf: no bound).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cutoff {
+    pub violation: f64,
+    pub cost: f64,
+}
+
+impl Cutoff {
+    /// No bound: a full assessment.
+    pub const NONE: Self = Self {
+        violation: f64::INFINITY,
+        cost: f64::INFINITY,
+    };
+
+    /// Only plans with a violation measure up to `v` matter (Deb's rules against one whose
+    /// violation is `v`).
+    #[must_use]
+    pub const fn violation(v: f64) -> Self {
+        Self {
+            violation: v,
+            ..Self::NONE
+        }
+    }
+
+    /// Only plans with a total cost up to `c` matter (penalised cost against one costing `c`).
+    #[must_use]
+    pub const fn cost(c: f64) -> Self {
+        Self {
+            cost: c,
+            ..Self::NONE
+        }
+    }
+
+    pub(super) fn is_none(self) -> bool {
+        self.violation == f64::INFINITY && self.cost == f64::INFINITY
+    }
+}
+
+/// The bounded part of [`super::assess_bounded`]: every UAV's terms on its waypoints, then
+/// (the flown paths built only now) its terms on what it flies, then the fleet's terms,
+/// giving up (false) as soon as the plan is known to exceed `cutoff`. The own violations go to a
+/// deferring sink and are replayed into `sink` after the fleet's, UAV by UAV (waypoint
+/// terms, then flown terms), the order of a full assessment.
+pub(super) fn bounded_terms(
+    world: &World,
+    plan: &Plan,
+    scratch: &mut Scratch,
+    sink: &mut ViolationSink,
+    exact: bool,
+    cutoff: Cutoff,
+) -> bool {
+    let n = plan.uavs.len();
+    let flies_arcs = world.flies_arcs();
+    let objective = &world.spec.objective;
+    let mut own = ViolationSink::new(sink.profile).deferring(std::mem::take(&mut scratch.deferred));
+    // The least the plan can cost: its terms known so far (the rest are >= 0) and the
+    // penalty of the violations found so far.
+    let least_cost = |reports: &[UavReport], own: &ViolationSink| {
+        let mut terms = 0.0;
+        for r in reports {
+            terms += r.raw.weighted(objective).sum();
+        }
+        terms
+            + penalty(
+                world,
+                reordered_lower_bound(own.measure + own.soft, own.count),
+            )
+    };
+    let over_violation =
+        |own: &ViolationSink| reordered_lower_bound(own.measure, own.count) > cutoff.violation;
+    let over_cost = |reports: &[UavReport], own: &ViolationSink| {
+        cutoff.cost < f64::INFINITY && least_cost(reports, own) > cutoff.cost
+    };
+    let mut given_up = false;
+    scratch.on_waypoints.resize(n, WaypointTerms::default());
+    if flies_arcs {
+        scratch.flown.fill_tangents(world, &scratch.timed);
+    }
+    let flown = flies_arcs.then_some(&scratch.flown);
+    for u in 0..n {
+        let on_waypoints = waypoint_terms(world, u, plan, (&scratch.timed, flown), false, &mut own);
+        scratch.on_waypoints[u] = on_waypoints;
+        scratch.reports[u] = UavReport {
+            raw: on_waypoints.raw(),
+            ..UavReport::default()
+        };
+        if over_violation(&own) {
+            given_up = true;
+            break;
+        }
+    }
+    given_up = given_up || over_cost(&scratch.reports, &own);
+    if !given_up {
+        if flies_arcs {
+            scratch.flown.fill_flown(world, &scratch.timed);
+        }
+        let motion = if flies_arcs {
+            &scratch.flown
+        } else {
+            &scratch.timed
+        };
+        for u in 0..n {
+            scratch.reports[u] = flown_terms(
+                world,
+                u,
+                plan,
+                (&scratch.timed, motion),
+                (flies_arcs, exact),
+                scratch.on_waypoints[u],
+                &mut own,
+            );
+            if over_violation(&own) {
+                given_up = true;
+                break;
+            }
+        }
+        given_up = given_up || over_cost(&scratch.reports, &own);
+        if !given_up {
+            let fleet = (
+                &mut scratch.comm,
+                &mut scratch.comm_out,
+                &mut scratch.prox,
+                &mut scratch.prox_out,
+            );
+            // After the sweep, the least the plan can cost: all but the obstacle term.
+            let reports = &scratch.reports;
+            let too_costly = |fleet: &ViolationSink, comm_out: &[comm::CommOutcome]| {
+                if cutoff.cost == f64::INFINITY {
+                    return false;
+                }
+                let mut terms = 0.0;
+                for (r, c) in reports.iter().zip(comm_out) {
+                    let mut raw = r.raw;
+                    raw[TermId::Communication] = c.cost;
+                    terms += raw.weighted(objective).sum();
+                }
+                let measure = fleet.measure + own.measure + fleet.soft + own.soft;
+                let count = fleet.count + own.count;
+                terms + penalty(world, reordered_lower_bound(measure, count)) > cutoff.cost
+            };
+            given_up = !fleet_terms(
+                world,
+                plan,
+                motion,
+                fleet,
+                sink,
+                cutoff.violation,
+                too_costly,
+            );
+        }
+    }
+    if !given_up {
+        // UAV by UAV, waypoint terms before flown terms (a stable sort: within one UAV's
+        // share of either part the order found stands).
+        if let Some(d) = &mut own.deferred {
+            d.sort_by_key(|v| v.uav);
+        }
+        own.replay_into(sink);
+    }
+    scratch.deferred = own.deferred.take().unwrap_or_default();
+    !given_up
+}
+
+/// A lower bound of what `partial`, a sum of some of a plan's violations added in another
+/// order than a full assessment's, is at most in that assessment. Rounding makes sums of m
+/// positive terms in two orders differ by at most about 2 m 2^-53 of their value, so
+/// below a million violations a margin of 1e-9 covers it (and beyond, no bound is claimed).
+pub(super) fn reordered_lower_bound(partial: f64, count: usize) -> f64 {
+    if count < 1_000_000 {
+        partial * (1.0 - 1e-9)
+    } else {
+        0.0
+    }
+}
