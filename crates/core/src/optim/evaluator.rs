@@ -136,17 +136,42 @@ impl<'a> Evaluator<'a> {
         cutoff: f64,
         out: &mut Vec<Evaluation>,
     ) {
+        self.rows_cost(rows, n, |_| cutoff, out);
+    }
+
+    /// [`Evaluator::evaluate_rows_cost_bounded`] with a cutoff per row: row i only matters
+    /// if it costs less than `cutoffs[i]` (a trial against its own parent).
+    pub fn evaluate_rows_cost_bounded_each(
+        &mut self,
+        rows: &[f64],
+        n: usize,
+        cutoffs: &[f64],
+        out: &mut Vec<Evaluation>,
+    ) {
+        assert!(cutoffs.len() >= n, "a cutoff per row");
+        self.rows_cost(rows, n, |i| cutoffs[i], out);
+    }
+
+    /// Rows bounded in cost, row i by `cutoff(i)` (+inf: evaluated in full).
+    fn rows_cost(
+        &mut self,
+        rows: &[f64],
+        n: usize,
+        cutoff: impl Fn(usize) -> f64 + Sync,
+        out: &mut Vec<Evaluation>,
+    ) {
         let problem = self.problem;
         let dim = self.dimension();
         let allowed = self.admit_rows(rows, n);
         out.clear();
         if dim == 0 {
-            out.extend((0..allowed).map(|_| cost_bounded(problem, &[], cutoff)));
+            out.extend((0..allowed).map(|i| cost_bounded(problem, &[], cutoff(i))));
             return;
         }
         rows[..allowed * dim]
             .par_chunks(dim)
-            .map(|x| cost_bounded(problem, x, cutoff))
+            .enumerate()
+            .map(|(i, x)| cost_bounded(problem, x, cutoff(i)))
             .collect_into_vec(out);
     }
 
@@ -353,5 +378,35 @@ mod tests {
         assert_eq!(ev.count(), 4);
         ev.evaluate_rows(&rows, 3, &mut out);
         assert!(out.is_empty());
+    }
+
+    /// Gives up whenever the cost exceeds the cutoff, and says which cutoffs it saw.
+    struct Bounded(Vec<Bound>);
+
+    impl Problem for Bounded {
+        fn bounds(&self) -> &[Bound] {
+            &self.0
+        }
+        fn evaluate(&self, x: &[f64]) -> Evaluation {
+            Evaluation::new(x.iter().sum(), 0.0)
+        }
+        fn evaluate_cost_bounded(&self, x: &[f64], cutoff: f64) -> Option<Evaluation> {
+            let e = self.evaluate(x);
+            (e.cost <= cutoff).then_some(e)
+        }
+    }
+
+    #[test]
+    fn each_row_is_bounded_by_its_own_cutoff() {
+        let p = Bounded(vec![Bound::new(0.0, 1.0); 2]);
+        let rows = [0.1, 0.2, 0.3, 0.4, 0.5, 0.5];
+        let mut ev = Evaluator::new(&p, Some(3));
+        let mut out = Vec::new();
+        // Row 0 (0.3) beats 0.5, row 1 (0.7) does not beat 0.6, row 2 (1.0) ties 1.0.
+        ev.evaluate_rows_cost_bounded_each(&rows, 3, &[0.5, 0.6, 1.0], &mut out);
+        let costs: Vec<f64> = out.iter().map(|e| e.cost).collect();
+        assert_eq!(costs, [0.1 + 0.2, f64::INFINITY, 0.5 + 0.5]);
+        assert_eq!(out[1], Evaluation::worst());
+        assert_eq!(ev.count(), 3, "a row given up still counts");
     }
 }

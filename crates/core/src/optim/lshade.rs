@@ -376,9 +376,12 @@ impl Optimizer for Lshade {
             }
         }
         // Evaluate every trial, then select (the population of this generation is fixed
-        // while trials are made, as in the paper).
+        // while trials are made, as in the paper). A trial only matters if it costs no more
+        // than its parent (one that costs more cannot be the best so far either), so its
+        // evaluation may stop once it is known to cost more.
         let mut trial_eval = Vec::with_capacity(n);
-        ev.evaluate_rows(&self.trial, n, &mut trial_eval);
+        let parents: Vec<f64> = self.eval[..n].iter().map(|e| e.cost).collect();
+        ev.evaluate_rows_cost_bounded_each(&self.trial, n, &parents, &mut trial_eval);
         for (i, e) in trial_eval.iter().enumerate() {
             self.best.offer(row(&self.trial, i, dim), *e);
         }
