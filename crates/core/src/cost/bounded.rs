@@ -10,7 +10,7 @@
 //! assessment, so a plan not given up gets the same bits ([`super::assess_bounded`]).
 
 use super::{
-    comm, fleet_terms, flown_terms, penalty, waypoint_terms, Scratch, TermId, UavReport,
+    comm, fleet_terms, flown_terms, fly, penalty, waypoint_terms, Scratch, TermId, UavReport,
     WaypointTerms,
 };
 use crate::feasibility::ViolationSink;
@@ -59,9 +59,9 @@ impl Cutoff {
 
 /// The bounded part of [`super::assess_bounded`]: every UAV's terms on its waypoints, then
 /// (the flown paths built only now) its terms on what it flies, then the fleet's terms,
-/// giving up (false) as soon as the plan is known to exceed `cutoff`. The own violations go to a
-/// deferring sink and are replayed into `sink` after the fleet's, UAV by UAV (waypoint
-/// terms, then flown terms), the order of a full assessment.
+/// giving up (false) as soon as the plan is known to exceed `cutoff`. The own violations go
+/// to a deferring sink and are replayed into `sink` after the fleet's, UAV by UAV
+/// (waypoint terms, then flown terms), the order of a full assessment.
 pub(super) fn bounded_terms(
     world: &World,
     plan: &Plan,
@@ -112,14 +112,7 @@ pub(super) fn bounded_terms(
     }
     given_up = given_up || over_cost(&scratch.reports, &own);
     if !given_up {
-        if flies_arcs {
-            scratch.flown.fill_flown(world, &scratch.timed);
-        }
-        let motion = if flies_arcs {
-            &scratch.flown
-        } else {
-            &scratch.timed
-        };
+        let motion = fly(world, &scratch.timed, &mut scratch.flown);
         for u in 0..n {
             scratch.reports[u] = flown_terms(
                 world,
@@ -182,10 +175,10 @@ pub(super) fn bounded_terms(
     !given_up
 }
 
-/// A lower bound of what `partial`, a sum of some of a plan's violations added in another
-/// order than a full assessment's, is at most in that assessment. Rounding makes sums of m
-/// positive terms in two orders differ by at most about 2 m 2^-53 of their value, so
-/// below a million violations a margin of 1e-9 covers it (and beyond, no bound is claimed).
+/// What a full assessment's sum of a plan's violations is at least, given `partial`, the
+/// sum of `count` of them added in another order. Rounding makes sums of m positive terms
+/// in two orders differ by at most about 2 m 2^-53 of their value, so below a million
+/// violations a margin of 1e-9 covers it (beyond, no bound is claimed: 0).
 pub(super) fn reordered_lower_bound(partial: f64, count: usize) -> f64 {
     if count < 1_000_000 {
         partial * (1.0 - 1e-9)

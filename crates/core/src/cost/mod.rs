@@ -247,14 +247,7 @@ pub fn assess_bounded(
             return None;
         }
     } else {
-        if flies_arcs {
-            scratch.flown.fill_flown(world, &scratch.timed);
-        }
-        let motion = if flies_arcs {
-            &scratch.flown
-        } else {
-            &scratch.timed
-        };
+        let motion = fly(world, &scratch.timed, &mut scratch.flown);
         if !spso_preset {
             let fleet = (
                 &mut scratch.comm,
@@ -266,7 +259,8 @@ pub fn assess_bounded(
                 false
             });
         }
-        let flown = flies_arcs.then_some(&scratch.flown);
+        // When it flies arcs, what is flown holds the turns' tangents.
+        let flown = flies_arcs.then_some(motion);
         for u in 0..n {
             let on_waypoints =
                 waypoint_terms(world, u, plan, (&scratch.timed, flown), spso_preset, sink);
@@ -296,6 +290,17 @@ pub fn assess_bounded(
     let total = terms_cost + penalty(world, violation + sink.soft);
     let total = if total.is_nan() { f64::INFINITY } else { total };
     Some((total, violation))
+}
+
+/// What the UAVs fly: the flown paths, built into `flown`, when the world flies arcs
+/// ([`World::flies_arcs`]), else the waypoint polylines `timed`.
+fn fly<'a>(world: &World, timed: &'a TimedPlan, flown: &'a mut TimedPlan) -> &'a TimedPlan {
+    if world.flies_arcs() {
+        flown.fill_flown(world, timed);
+        flown
+    } else {
+        timed
+    }
 }
 
 /// The fleet's terms: the communication sweep, then proximity unless the measure already
