@@ -380,7 +380,7 @@ mod tests {
         assert!(out.is_empty());
     }
 
-    /// Gives up whenever the cost exceeds the cutoff, and says which cutoffs it saw.
+    /// Gives up whenever the cost exceeds the cutoff.
     struct Bounded(Vec<Bound>);
 
     impl Problem for Bounded {
