@@ -202,9 +202,8 @@ impl Terrain {
         match self.sampling {
             Sampling::Bilinear => self.bilinear(u, v),
             Sampling::NearestMatlab => {
-                // MATLAB round: half away from zero == f64::round.
-                let i = u.round().clamp(0.0, (self.nx - 1) as f64) as usize;
-                let j = v.round().clamp(0.0, (self.ny - 1) as f64) as usize;
+                let i = nearest_node(u, self.nx);
+                let j = nearest_node(v, self.ny);
                 self.node(i, j)
             }
         }
@@ -444,9 +443,56 @@ fn build_pyramid(nx: usize, ny: usize, h: &[f64]) -> Vec<MaxLevel> {
     levels
 }
 
+/// The node nearest to grid coordinate `u` on an axis of `count` nodes, by MATLAB's
+/// `round` (half away from zero, as `f64::round`), clamped to the grid; NaN gives 0.
+/// Clamping first and rounding the clamped value by its integer part gives the same node as
+/// `u.round().clamp(..)` (the fraction `u - trunc(u)` is exact for u >= 0, Sterbenz), without
+/// a call to libm's `round`.
+fn nearest_node(u: f64, count: usize) -> usize {
+    let u = u.clamp(0.0, (count - 1) as f64);
+    let i = u as usize;
+    if u - i as f64 >= 0.5 {
+        i + 1
+    } else {
+        i
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_nearest_node_is_matlabs_round_clamped_to_the_grid() {
+        let by_round = |u: f64, count: usize| u.round().clamp(0.0, (count - 1) as f64) as usize;
+        let mut values = vec![
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            -0.5,
+            -0.49,
+            0.0,
+            0.5,
+            0.49999999999999994,
+            1.5,
+            2.5,
+            8.5,
+            8.9,
+            9.0,
+            9.4,
+            9.5,
+            1e300,
+        ];
+        let mut u = -3.0;
+        while u < 13.0 {
+            values.push(u);
+            values.push(f64::from_bits(u.to_bits() + 1));
+            u += 0.125;
+        }
+        for u in values {
+            assert_eq!(nearest_node(u, 10), by_round(u, 10), "u = {u}");
+        }
+    }
 
     fn ramp() -> Terrain {
         // h = 2 x + 3 y on a 1 m grid, 40 x 30 nodes.
