@@ -113,6 +113,16 @@ impl Evaluation {
         self.cost.total_cmp(&other.cost).is_lt()
     }
 
+    /// The cost cutoff ([`Problem::evaluate_cost_bounded`]) for a candidate that matters only
+    /// if it is [`Evaluation::better_than`] this one: this cost, or `f64::MAX` when it is
+    /// +inf, so that a candidate found to cost +inf, which cannot beat it, is given up too
+    /// (one costing less is never given up). SPSO's MyCost puts +inf on every collision, and
+    /// a particle's pbest stays there until it finds a path that does not collide.
+    #[must_use]
+    pub fn cutoff_to_beat(&self) -> f64 {
+        self.cost.min(f64::MAX)
+    }
+
     /// Strictly better under Deb's feasibility rules (Deb 2000, Comput. Methods Appl. Mech.
     /// Eng. 186:311-338): the smaller violation wins, and between equal violations (two
     /// feasible candidates in particular) the lower cost.
@@ -207,6 +217,20 @@ pub trait Problem: Sync {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_cutoff_to_beat_gives_up_only_on_what_cannot_beat() {
+        let finite = Evaluation::new(12.5, 0.0);
+        assert_eq!(finite.cutoff_to_beat(), 12.5);
+        let colliding = Evaluation::new(f64::INFINITY, 3.0);
+        let cutoff = colliding.cutoff_to_beat();
+        assert!(cutoff.is_finite());
+        // Every candidate above the cutoff is one that is not better.
+        let worse = Evaluation::new(f64::INFINITY, 0.0);
+        assert!(worse.cost > cutoff && !worse.better_than(&colliding));
+        let better = Evaluation::new(f64::MAX, 9.0);
+        assert!(better.cost <= cutoff && better.better_than(&colliding));
+    }
 
     #[test]
     fn periodic_bound_wraps_and_plain_bound_clamps() {

@@ -20,7 +20,7 @@ use swarmplan_core::feasibility::{Violation, ViolationSink};
 use swarmplan_core::planning::PlanningProblem;
 use swarmplan_core::problem::Problem;
 use swarmplan_core::rng::rng_from_seed;
-use swarmplan_core::world::spec::TimingPolicy;
+use swarmplan_core::world::spec::{ObjectivePreset, TimingPolicy};
 use swarmplan_core::world::World;
 use swarmplan_io::scenario::{build_world, load_spec};
 
@@ -196,14 +196,15 @@ proptest! {
     /// A bounded evaluation (the cooperative method's moved particles,
     /// `Problem::evaluate_blocks_bounded`) either gives up, and then the full violation is
     /// above the cutoff, or returns the full evaluation bit for bit, block shares included;
-    /// on warm buffers in a sequence of evaluations as a search makes them.
+    /// on warm buffers in a sequence of evaluations as a search makes them, under both
+    /// objective presets.
     #[test]
     fn a_bounded_evaluation_is_the_full_one_or_gives_up_only_above_the_cutoff(
-        world_index in 0usize..7,
+        world_index in 0usize..9,
         seed in any::<u64>(),
         cutoffs in prop::collection::vec(prop_oneof![Just(0.0), 0.0f64..3.0, 0.0f64..300.0], 1..8),
     ) {
-        let world = &worlds()[world_index];
+        let world = &worlds_and_spso_presets()[world_index];
         let problem = PlanningProblem::new(world, EncodingKind::Spherical, InitKind::Line);
         let mut rng = rng_from_seed(seed);
         let mut x = vec![0.0; problem.dimension()];
@@ -245,6 +246,24 @@ fn bounded_evaluations_give_up_below_the_violation_and_not_above() {
     assert_eq!(kept.violation.to_bits(), full.violation.to_bits());
 }
 
+/// The worlds of [`worlds`], then two under the `spso` objective preset (SPSO's MyCost: no
+/// fleet terms, collisions at +inf; one UAV): spso-case1 and spso-case2 on the procedural
+/// terrain.
+fn worlds_and_spso_presets() -> &'static [World] {
+    static W: OnceLock<Vec<World>> = OnceLock::new();
+    W.get_or_init(|| {
+        let spso = |name: &str| {
+            let mut loaded = load_spec(name).unwrap();
+            loaded.spec.objective.preset = ObjectivePreset::Spso;
+            build_world(&loaded, None).unwrap()
+        };
+        let mut all = worlds().to_vec();
+        all.push(spso("spso-case1"));
+        all.push(spso("spso-case2"));
+        all
+    })
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(40))]
 
@@ -252,14 +271,14 @@ proptest! {
     /// `Problem::evaluate_cost_bounded`), which may give up after the waypoint terms, the
     /// flown terms or the communication sweep, either gives up, and then the full cost is
     /// above the cutoff, or returns the full evaluation bit for bit; cutoffs within 30 % of
-    /// the plan's cost, on warm buffers.
+    /// the plan's cost, on warm buffers, under both objective presets.
     #[test]
     fn a_cost_bounded_evaluation_is_the_full_one_or_gives_up_only_above_the_cutoff(
-        world_index in 0usize..7,
+        world_index in 0usize..9,
         seed in any::<u64>(),
         shares in prop::collection::vec(-0.3f64..0.3, 1..8),
     ) {
-        let world = &worlds()[world_index];
+        let world = &worlds_and_spso_presets()[world_index];
         let problem = PlanningProblem::new(world, EncodingKind::Spherical, InitKind::Line);
         let mut rng = rng_from_seed(seed);
         let mut x = vec![0.0; problem.dimension()];
@@ -278,6 +297,47 @@ proptest! {
             prop_assert_eq!(again.cost.to_bits(), full.cost.to_bits());
         }
     }
+}
+
+/// Under the `spso` preset a cost-bounded evaluation gives up too: SPSO's terms on the
+/// waypoints are its whole cost, so a plan costing twice the cutoff is not assessed further,
+/// and a plan that collides (+inf) is given up at its first collision under any finite
+/// cutoff (`f64::MAX`, what a particle whose pbest collides passes), while one that does not
+/// is then assessed in full, bit for bit.
+#[test]
+fn a_cost_bounded_evaluation_gives_up_under_the_spso_preset() {
+    let mut finite = 0;
+    let mut infinite = 0;
+    for (world, init) in [
+        (&worlds_and_spso_presets()[7], InitKind::Corridor),
+        (&worlds_and_spso_presets()[7], InitKind::Uniform),
+        (&worlds_and_spso_presets()[8], InitKind::Uniform),
+    ] {
+        let problem = PlanningProblem::new(world, EncodingKind::Spherical, init);
+        let mut rng = rng_from_seed(1);
+        let mut x = vec![0.0; problem.dimension()];
+        for _ in 0..20 {
+            problem.sample_initial(&mut rng, &mut x);
+            let full = problem.evaluate(&x);
+            let bounded = problem.evaluate_cost_bounded(&x, f64::MAX);
+            if full.cost.is_finite() {
+                finite += 1;
+                assert!(problem.evaluate_cost_bounded(&x, 0.5 * full.cost).is_none());
+                for cutoff in [full.cost, f64::MAX] {
+                    let kept = problem.evaluate_cost_bounded(&x, cutoff).unwrap();
+                    assert_eq!(kept.cost.to_bits(), full.cost.to_bits());
+                    assert_eq!(kept.violation.to_bits(), full.violation.to_bits());
+                }
+            } else {
+                infinite += 1;
+                assert!(bounded.is_none());
+            }
+        }
+    }
+    assert!(
+        finite > 0 && infinite > 0,
+        "{finite} finite, {infinite} infinite"
+    );
 }
 
 /// A bounded assessment fills a UAV's turn tangents before any arc and may give up there

@@ -8,13 +8,18 @@
 //! (waypoint terms, then flown terms, then the communication sweep, then proximity) puts
 //! the cheap, decisive parts first; what is found is replayed in the order of a full
 //! assessment, so a plan not given up gets the same bits ([`super::assess_bounded`]).
+//! Under the `spso` preset (SPSO's MyCost, one UAV, no fleet terms) the waypoint terms are
+//! the whole cost, and a collision makes it +inf: under a finite cutoff SPSO's terms stop at
+//! the first collision and the plan is given up.
 
+use super::spso::Collisions;
 use super::{
     comm, fleet_terms, flown_terms, fly, penalty, waypoint_terms, Scratch, TermId, UavReport,
     WaypointTerms,
 };
 use crate::feasibility::ViolationSink;
 use crate::plan::Plan;
+use crate::world::spec::ObjectivePreset;
 use crate::world::World;
 
 /// What a bounded assessment ([`super::assess_bounded`]) may give up above: a plan whose
@@ -72,6 +77,15 @@ pub(super) fn bounded_terms(
 ) -> bool {
     let n = plan.uavs.len();
     let flies_arcs = world.flies_arcs();
+    // Under the `spso` preset SPSO's terms are the whole cost and there are no fleet terms;
+    // a plan with a collision costs +inf, beyond any finite cutoff, so its terms may stop
+    // there.
+    let spso_preset = world.spec.objective.preset == ObjectivePreset::Spso;
+    let collisions = match (spso_preset, cutoff.cost < f64::INFINITY) {
+        (false, _) => Collisions::Penalised,
+        (true, false) => Collisions::Infinite,
+        (true, true) => Collisions::InfiniteAndStop,
+    };
     let objective = &world.spec.objective;
     let mut own = ViolationSink::new(sink.profile).deferring(std::mem::take(&mut scratch.deferred));
     // The least the plan can cost: its terms known so far (the rest are >= 0) and the
@@ -99,13 +113,24 @@ pub(super) fn bounded_terms(
     }
     let flown = flies_arcs.then_some(&scratch.flown);
     for u in 0..n {
-        let on_waypoints = waypoint_terms(world, u, plan, (&scratch.timed, flown), false, &mut own);
+        let on_waypoints = waypoint_terms(
+            world,
+            u,
+            plan,
+            (&scratch.timed, flown),
+            collisions,
+            &mut own,
+        );
         scratch.on_waypoints[u] = on_waypoints;
         scratch.reports[u] = UavReport {
             raw: on_waypoints.raw(),
             ..UavReport::default()
         };
-        if over_violation(&own) {
+        // A term at +inf makes the total +inf (or NaN, which is +inf too), whatever the
+        // weights.
+        if over_violation(&own)
+            || (collisions == Collisions::InfiniteAndStop && on_waypoints.spso.infinite())
+        {
             given_up = true;
             break;
         }
@@ -129,7 +154,7 @@ pub(super) fn bounded_terms(
             }
         }
         given_up = given_up || over_cost(&scratch.reports, &own);
-        if !given_up {
+        if !given_up && !spso_preset {
             let fleet = (
                 &mut scratch.comm,
                 &mut scratch.comm_out,

@@ -217,10 +217,11 @@ pub fn assess_into(
 /// to know whether a candidate beats one at the cutoff (by Deb's rules or by penalised cost)
 /// learns that exactly, for less.
 ///
-/// With a cutoff (no violation list wanted, and not under the `spso` preset, which has no
-/// fleet terms to skip) the UAVs' own terms come first, into a sink that records their
-/// violations: every UAV's terms on its waypoints (threat band, altitude, turns, climb,
-/// turning radius), checked after each UAV and for cost after all; then the flown paths are
+/// With a cutoff (no violation list wanted) the UAVs' own terms come first, into a sink
+/// that records their violations: every UAV's terms on its waypoints (threat band,
+/// altitude, turns, climb, turning radius; under the `spso` preset and a finite cost cutoff
+/// they stop at a collision, which makes the cost +inf), checked after each UAV and for
+/// cost after all; then the flown paths are
 /// built and every UAV's terms on them (arc threats, clearance, speed, battery), checked
 /// likewise; then the communication sweep (checked for violation and cost) and proximity
 /// (checked for violation); then the recorded violations are added to `sink` in the order
@@ -241,8 +242,7 @@ pub fn assess_bounded(
     scratch.reports.resize_with(n, UavReport::default);
     scratch.comm_out.resize(n, comm::CommOutcome::default());
     scratch.prox_out.resize(n, 0.0);
-    // Under the `spso` preset there is no fleet term to skip: nothing to gain.
-    if !cutoff.is_none() && !sink.is_collecting() && !spso_preset {
+    if !cutoff.is_none() && !sink.is_collecting() {
         if !bounded::bounded_terms(world, plan, scratch, sink, exact, cutoff) {
             return None;
         }
@@ -261,9 +261,14 @@ pub fn assess_bounded(
         }
         // When it flies arcs, what is flown holds the turns' tangents.
         let flown = flies_arcs.then_some(motion);
+        let collisions = if spso_preset {
+            spso::Collisions::Infinite
+        } else {
+            spso::Collisions::Penalised
+        };
         for u in 0..n {
             let on_waypoints =
-                waypoint_terms(world, u, plan, (&scratch.timed, flown), spso_preset, sink);
+                waypoint_terms(world, u, plan, (&scratch.timed, flown), collisions, sink);
             scratch.reports[u] = flown_terms(
                 world,
                 u,
@@ -357,18 +362,28 @@ impl WaypointTerms {
 
 /// UAV `u`'s terms and constraints on its waypoints, the first part of its own terms.
 /// `flown` holds the turns' tangent lengths when the world flies arcs
-/// ([`TimedPlan::fill_tangents`]).
+/// ([`TimedPlan::fill_tangents`]). `collisions` is [`spso::Collisions::Penalised`] but under
+/// the `spso` preset; with [`spso::Collisions::InfiniteAndStop`] a UAV whose SPSO terms
+/// are +inf gets nothing more.
 fn waypoint_terms(
     world: &World,
     u: usize,
     plan: &Plan,
     (timed, flown): (&TimedPlan, Option<&TimedPlan>),
-    spso_preset: bool,
+    collisions: spso::Collisions,
     sink: &mut ViolationSink,
 ) -> WaypointTerms {
     let tp = &timed.paths[u];
+    let spso = spso::spso_terms(world, u, &plan.uavs[u], tp, collisions, sink);
+    if collisions == spso::Collisions::InfiniteAndStop && spso.infinite() {
+        return WaypointTerms {
+            spso,
+            ..WaypointTerms::default()
+        };
+    }
+    let spso_preset = collisions != spso::Collisions::Penalised;
     let terms = WaypointTerms {
-        spso: spso::spso_terms(world, u, &plan.uavs[u], tp, spso_preset, sink),
+        spso,
         kin: kinematics::kinematics(world, u, tp, !spso_preset, sink),
     };
     if let Some(flown) = flown {

@@ -8,7 +8,7 @@
 //!   and |change of climb angle| if it exceeds 45 deg (degrees; zero-length projections are
 //!   skipped by looking further back / ahead).
 //!
-//! With `collision_is_infinite` (the `spso` preset) a collision or a crash makes the term
+//! Under the `spso` preset ([`Collisions::Infinite`]) a collision or a crash makes the term
 //! +inf as in SPSO. Otherwise the band keeps growing linearly inside the cylinder, so the
 //! search has a slope to follow, and the hard violation is reported to the sink.
 
@@ -34,22 +34,51 @@ pub struct SpsoTerms {
     pub smoothness: f64,
 }
 
+impl SpsoTerms {
+    /// Whether a collision or a crash made a term +inf (under [`Collisions::Infinite`]).
+    #[must_use]
+    pub fn infinite(&self) -> bool {
+        self.threat == f64::INFINITY || self.altitude == f64::INFINITY
+    }
+}
+
+/// What a collision with a threat, or a waypoint below ground, costs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Collisions {
+    /// The threat band keeps growing inside the cylinder (the violation goes to the sink).
+    Penalised,
+    /// +inf, as in SPSO's MyCost (the `spso` preset).
+    Infinite,
+    /// +inf, and the terms stop at the first (the rest at 0, the later violations not
+    /// reported): for a bounded assessment, to which a plan costing +inf is of no use.
+    InfiniteAndStop,
+}
+
 /// Computes J1..J4 for UAV `uav` and reports threat and altitude violations.
 pub fn spso_terms(
     world: &World,
     uav: usize,
     path: &Path,
     tp: &TimedPath,
-    collision_is_infinite: bool,
+    collisions: Collisions,
     sink: &mut ViolationSink,
 ) -> SpsoTerms {
     let size = world.spec.uavs[uav].size;
-    SpsoTerms {
+    let mut terms = SpsoTerms {
         length: tp.length,
-        threat: threat_term(world, uav, size, path, tp, collision_is_infinite, sink),
-        altitude: altitude_term(world, uav, path, tp, collision_is_infinite, sink),
-        smoothness: smoothness_term(path, &tp.abs),
+        threat: threat_term(world, uav, size, path, tp, collisions, sink),
+        ..SpsoTerms::default()
+    };
+    let stop = collisions == Collisions::InfiniteAndStop;
+    if stop && terms.infinite() {
+        return terms;
     }
+    terms.altitude = altitude_term(world, uav, path, tp, collisions, sink);
+    if stop && terms.infinite() {
+        return terms;
+    }
+    terms.smoothness = smoothness_term(path, &tp.abs);
+    terms
 }
 
 fn threat_term(
@@ -58,9 +87,10 @@ fn threat_term(
     size: f64,
     path: &Path,
     tp: &TimedPath,
-    inf: bool,
+    collisions: Collisions,
     sink: &mut ViolationSink,
 ) -> f64 {
+    let inf = collisions != Collisions::Penalised;
     let danger = DANGER_FACTOR * size;
     let mut j2 = 0.0;
     let w = &path.waypoints;
@@ -101,6 +131,9 @@ fn threat_term(
                         )
                     },
                 );
+                if collisions == Collisions::InfiniteAndStop {
+                    return j2;
+                }
             } else {
                 j2 += outer - d;
             }
@@ -114,9 +147,10 @@ fn altitude_term(
     uav: usize,
     path: &Path,
     tp: &TimedPath,
-    inf: bool,
+    collisions: Collisions,
     sink: &mut ViolationSink,
 ) -> f64 {
+    let inf = collisions != Collisions::Penalised;
     let [zmin, zmax] = world.spec.map.z_agl;
     let mid = 0.5 * (zmin + zmax);
     let w = &path.waypoints;
@@ -124,6 +158,9 @@ fn altitude_term(
     for k in 1..w.len().saturating_sub(1) {
         let z = w[k].z;
         j3 += if z < 0.0 && inf {
+            if collisions == Collisions::InfiniteAndStop {
+                return f64::INFINITY;
+            }
             f64::INFINITY
         } else {
             (z - mid).abs()

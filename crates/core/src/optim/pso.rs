@@ -285,8 +285,9 @@ impl Swarm {
         let dim = self.dim;
         let x = row(&self.x, i, dim);
         // Only a strict improvement on pbest_i matters, so the evaluation may stop once the
-        // cost is known to exceed pbest_i's (the same run, for less; docs/performance.md).
-        let e = ev.evaluate_cost_bounded(x, self.pbest_eval[i].cost)?;
+        // cost is known to exceed pbest_i's, or to be +inf when pbest_i's is (the same run,
+        // for less; docs/performance.md).
+        let e = ev.evaluate_cost_bounded(x, self.pbest_eval[i].cutoff_to_beat())?;
         if !e.better_than(&self.pbest_eval[i]) {
             return Some(false);
         }

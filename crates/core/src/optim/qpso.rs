@@ -185,8 +185,9 @@ impl Optimizer for Qpso {
                 x[j] = into_bound(&bounds[j], moved);
             }
             // Only a strict improvement on pbest_i matters (gbest is offered nothing else),
-            // so the evaluation may stop once the cost is known to exceed pbest_i's.
-            let Some(e) = ev.evaluate_cost_bounded(x, self.pbest_eval[i].cost) else {
+            // so the evaluation may stop once the cost is known to exceed pbest_i's (or to
+            // be +inf when pbest_i's is).
+            let Some(e) = ev.evaluate_cost_bounded(x, self.pbest_eval[i].cutoff_to_beat()) else {
                 break;
             };
             if e.better_than(&self.pbest_eval[i]) {
