@@ -32,7 +32,9 @@ pub struct Exemplar {
 /// the vector with j set to `guide[j]` and keep it if its cost is strictly lower. At most
 /// D evaluations; never worse than `pbest`. `evaluate(x, cost)` is asked only whether `x`
 /// costs less than `cost`, so it may give up on a candidate known to cost more (returning
-/// [`Evaluation::worst`], as [`crate::problem::Problem::evaluate_cost_bounded`] does).
+/// [`Evaluation::worst`], as [`crate::problem::Problem::evaluate_cost_bounded`] does);
+/// `cost` is [`Evaluation::cutoff_to_beat`] of what was accepted so far (`f64::MAX` while
+/// that costs +inf).
 /// `evaluate` returning `None` (budget spent) stops the pass, keeping what was accepted.
 /// Writes the result into `out`.
 pub fn build_exemplar_into(
@@ -54,7 +56,7 @@ pub fn build_exemplar_into(
             continue;
         }
         out[j] = gj;
-        let Some(e) = evaluate(out, stats.eval.cost) else {
+        let Some(e) = evaluate(out, stats.eval.cutoff_to_beat()) else {
             out[j] = old;
             break;
         };
@@ -158,5 +160,47 @@ mod tests {
         assert_eq!(bounded, plain);
         // Probes 1, 2 and 4 are refused (costs 33, 34 and 37), 3 and 5 accepted (25, then 9).
         assert_eq!(cutoffs, [30.0, 30.0, 30.0, 25.0, 25.0]);
+    }
+
+    /// From a pbest at +inf (SPSO's cost of a collision), probes are bounded by `f64::MAX`:
+    /// one that costs +inf too is given up, and the exemplar is the same.
+    #[test]
+    fn probes_from_a_pbest_at_infinity_give_up_only_at_infinity() {
+        // +inf while the first coordinate is above 1.5, else the sphere.
+        let cost = |x: &[f64]| {
+            if x[0] > 1.5 {
+                f64::INFINITY
+            } else {
+                sphere(x)
+            }
+        };
+        let pbest = [2.0, 0.0, 3.0];
+        let guide = [2.5, 1.0, 1.0];
+        let worse_guide = [1.0, 1.0, 1.0];
+        for guide in [guide, worse_guide] {
+            let plain = build_exemplar(
+                |x, _| Some(Evaluation::new(cost(x), 0.0)),
+                &pbest,
+                Evaluation::new(f64::INFINITY, 0.0),
+                &guide,
+            );
+            let mut cutoffs = Vec::new();
+            let bounded = build_exemplar(
+                |x, cutoff| {
+                    cutoffs.push(cutoff);
+                    let c = cost(x);
+                    Some(if c > cutoff {
+                        Evaluation::worst()
+                    } else {
+                        Evaluation::new(c, 0.0)
+                    })
+                },
+                &pbest,
+                Evaluation::new(f64::INFINITY, 0.0),
+                &guide,
+            );
+            assert_eq!(bounded, plain);
+            assert_eq!(cutoffs[0], f64::MAX);
+        }
     }
 }
