@@ -116,7 +116,7 @@ impl Problem {
             .map(|i| {
                 i.parse::<InitKind>().map_err(|_| {
                     bad(format!(
-                        "init: expected uniform, line or corridor, got `{i}`"
+                        "init: expected uniform, line, corridor or fan, got `{i}`"
                     ))
                 })
             })

@@ -8,7 +8,7 @@
 use std::cell::RefCell;
 
 use crate::cost::{assess, assess_bounded, assess_into, Assessment, Cutoff, Scratch};
-use crate::encoding::init::{sample_corridor_plan, sample_line_plan};
+use crate::encoding::init::{sample_corridor_plan, sample_fan_plan, sample_line_plan};
 use crate::encoding::{self, EncodingKind, Frame, InitKind, PathEncoding};
 use crate::feasibility::ViolationSink;
 use crate::plan::Plan;
@@ -287,22 +287,17 @@ impl Problem for PlanningProblem<'_> {
     }
 
     fn sample_initial(&self, rng: &mut Rng, out: &mut [f64]) {
+        let mut plan = Plan::default();
         match self.init {
-            InitKind::Uniform => fill_uniform(self.encoding.bounds(), rng, out),
-            InitKind::Line => {
-                let mut plan = Plan::default();
-                sample_line_plan(&self.frame, rng, &mut plan);
-                self.draw_pace(rng, &mut plan);
-                self.draw_delays(rng, &mut plan);
-                self.encoding.encode_into(&plan, out);
-            }
+            InitKind::Uniform => return fill_uniform(self.encoding.bounds(), rng, out),
+            InitKind::Line => sample_line_plan(&self.frame, rng, &mut plan),
             InitKind::Corridor => {
-                let mut plan = Plan::default();
                 sample_corridor_plan(&self.frame, &self.corridors, rng, &mut plan);
-                self.draw_pace(rng, &mut plan);
-                self.draw_delays(rng, &mut plan);
-                self.encoding.encode_into(&plan, out);
             }
+            InitKind::Fan => sample_fan_plan(&self.frame, rng, &mut plan),
         }
+        self.draw_pace(rng, &mut plan);
+        self.draw_delays(rng, &mut plan);
+        self.encoding.encode_into(&plan, out);
     }
 }

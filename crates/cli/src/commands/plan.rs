@@ -33,7 +33,8 @@ pub struct PlanArgs {
     #[arg(long)]
     pub encoding: Option<EncodingKind>,
     /// Replace the method's initialisation: uniform, line, corridor (a threat-free corridor;
-    /// docs/results.md, "Outside benchmark instances").
+    /// docs/results.md, "Outside benchmark instances"), fan (half of the draws fan the fleet
+    /// out; docs/results.md, "A fanned start").
     #[arg(long)]
     pub init: Option<InitKind>,
     /// Seed of the run (default: the scenario's `planning.seed`).

@@ -18,6 +18,7 @@ use std::fmt;
 use std::str::FromStr;
 
 use glam::{DVec2, DVec3};
+use rand::seq::SliceRandom as _;
 use rand::Rng as _;
 use serde::{Deserialize, Serialize};
 
@@ -42,6 +43,14 @@ pub enum InitKind {
     /// `CORRIDOR_SPREAD` of the start-goal distance, at a random height above ground held
     /// along the path; then encoded. A UAV without a corridor (walled in) is drawn as `line`.
     Corridor,
+    /// Half of the draws are `line` draws; the other half fan the fleet out: the UAVs, in a
+    /// random order, get evenly spaced strata of the bow's departure slope and the reverse
+    /// strata of its arrival slope (so the paths do not cross), up to `FAN_SPREAD` of the
+    /// start-goal distance, each jittered within the middle half of its stratum, at a random
+    /// height as in `line`. UAVs that share a start then leave on different bearings instead
+    /// of a random few on one. Not swarmplan's default: it helps on the outside instances
+    /// with delays and costs paper-case2 contact (docs/results.md, "A fanned start").
+    Fan,
 }
 
 /// Largest sideways bow of a `corridor` path, as a share of its start-goal distance.
@@ -50,8 +59,13 @@ pub const CORRIDOR_SPREAD: f64 = 0.01;
 /// Largest sideways bow of a `line` path, as a share of its start-goal distance.
 pub const LINE_SPREAD: f64 = 0.25;
 
+/// Largest departure (and arrival) slope of a `fan` path, `a1 + 2 a2` (and `2 a2 - a1`) of
+/// its bow, as a share of its start-goal distance: the outermost UAVs of a fan leave about
+/// 40 degrees off the start-goal bearing at ten free waypoints.
+pub const FAN_SPREAD: f64 = 0.3;
+
 impl InitKind {
-    pub const ALL: [Self; 3] = [Self::Uniform, Self::Line, Self::Corridor];
+    pub const ALL: [Self; 4] = [Self::Uniform, Self::Line, Self::Corridor, Self::Fan];
 
     #[must_use]
     pub const fn name(self) -> &'static str {
@@ -59,6 +73,7 @@ impl InitKind {
             Self::Uniform => "uniform",
             Self::Line => "line",
             Self::Corridor => "corridor",
+            Self::Fan => "fan",
         }
     }
 }
@@ -76,7 +91,7 @@ impl FromStr for InitKind {
             .into_iter()
             .find(|k| k.name().eq_ignore_ascii_case(s))
             .ok_or_else(|| {
-                format!("unknown initialisation `{s}`; expected uniform, line or corridor")
+                format!("unknown initialisation `{s}`; expected uniform, line, corridor or fan")
             })
     }
 }
@@ -89,6 +104,40 @@ fn uniform(lo: f64, hi: f64, rng: &mut Rng) -> f64 {
 /// A plan drawn by the `line` sampler: every UAV's free waypoints near its start-goal line.
 pub fn sample_line_plan(frame: &Frame, rng: &mut Rng, plan: &mut Plan) {
     sample_bowed_plan(frame, &[], rng, plan);
+}
+
+/// A plan drawn by the `fan` sampler ([`InitKind::Fan`]): a `line` plan or a fanned one,
+/// with probability 1/2 each.
+pub fn sample_fan_plan(frame: &Frame, rng: &mut Rng, plan: &mut Plan) {
+    if rng.random::<bool>() {
+        sample_line_plan(frame, rng, plan);
+    } else {
+        sample_fanned_plan(frame, rng, plan);
+    }
+}
+
+/// The fanned half of [`sample_fan_plan`].
+fn sample_fanned_plan(frame: &Frame, rng: &mut Rng, plan: &mut Plan) {
+    frame.prepare(plan);
+    let m = plan.uavs.len();
+    let mut order: Vec<usize> = (0..m).collect();
+    order.shuffle(rng);
+    // Stratum k of m, jittered within its middle half, in [-1, 1].
+    let stratum = |k: usize, rng: &mut Rng| {
+        let u: f64 = rng.random();
+        2.0 * (k as f64 + 0.25 + 0.5 * u) / m as f64 - 1.0
+    };
+    for (i, path) in plan.uavs.iter_mut().enumerate() {
+        let s = frame.starts[i];
+        let axes = start_goal_axes(s, frame.goal);
+        let length = axes.0;
+        // The bow's slopes at t = 0 and t = 1 are pi (a1 + 2 a2) and pi (2 a2 - a1).
+        let departure = FAN_SPREAD * length * stratum(order[i], rng);
+        let arrival = -FAN_SPREAD * length * stratum(order[i], rng);
+        let (a1, a2) = (0.5 * (departure - arrival), 0.25 * (departure + arrival));
+        let z = uniform(frame.z[0], frame.z[1], rng);
+        place_bowed(frame, path, s, axes, (a1, a2, z), None);
+    }
 }
 
 /// A plan drawn by the `corridor` sampler: every UAV's free waypoints near its corridor
@@ -106,40 +155,58 @@ pub fn sample_corridor_plan(
 /// least two points, else the start-goal line), bowed sideways, at one random height.
 fn sample_bowed_plan(frame: &Frame, corridors: &[Vec<DVec2>], rng: &mut Rng, plan: &mut Plan) {
     frame.prepare(plan);
-    let n = frame.n;
     for (i, (path, s)) in plan.uavs.iter_mut().zip(&frame.starts).enumerate() {
-        let d = (frame.goal - *s).truncate();
-        let length = d.length();
-        let (dir, side) = if length > 0.0 {
-            let u = d / length;
-            (u, DVec2::new(-u.y, u.x))
-        } else {
-            (DVec2::X, DVec2::Y)
-        };
+        let axes = start_goal_axes(*s, frame.goal);
         let guide = corridors.get(i).filter(|c| c.len() >= 2);
         let spread = if guide.is_some() {
             CORRIDOR_SPREAD
         } else {
             LINE_SPREAD
         };
-        let h = spread * length;
+        let h = spread * axes.0;
         let a1 = uniform(-h, h, rng);
         let a2 = uniform(-0.5 * h, 0.5 * h, rng);
         let z = uniform(frame.z[0], frame.z[1], rng);
-        let guided = guide.map(|c| resample(c, n));
-        for k in 1..=n {
-            let t = k as f64 / (n + 1) as f64;
-            let bow = a1 * (PI * t).sin() + a2 * (2.0 * PI * t).sin();
-            let on = guided
-                .as_ref()
-                .map_or_else(|| s.truncate() + dir * (t * length), |g| g[k - 1]);
-            let p = on + side * bow;
-            path.waypoints[k] = DVec3::new(
-                p.x.clamp(frame.x[0], frame.x[1]),
-                p.y.clamp(frame.y[0], frame.y[1]),
-                z,
-            );
-        }
+        let guided = guide.map(|c| resample(c, frame.n));
+        place_bowed(frame, path, *s, axes, (a1, a2, z), guided.as_deref());
+    }
+}
+
+/// The start-goal distance in the plane, its direction and the direction to its left (the
+/// x and y axes for a UAV that starts at the goal).
+fn start_goal_axes(start: DVec3, goal: DVec3) -> (f64, DVec2, DVec2) {
+    let d = (goal - start).truncate();
+    let length = d.length();
+    if length > 0.0 {
+        let u = d / length;
+        (length, u, DVec2::new(-u.y, u.x))
+    } else {
+        (length, DVec2::X, DVec2::Y)
+    }
+}
+
+/// Places a path's free waypoints on planes across its start-goal line (or at the points of
+/// `guided`), displaced sideways by the bow `a1 sin(pi t) + a2 sin(2 pi t)`, at height `z`,
+/// clamped into the box.
+fn place_bowed(
+    frame: &Frame,
+    path: &mut crate::plan::Path,
+    start: DVec3,
+    (length, dir, side): (f64, DVec2, DVec2),
+    (a1, a2, z): (f64, f64, f64),
+    guided: Option<&[DVec2]>,
+) {
+    let n = frame.n;
+    for k in 1..=n {
+        let t = k as f64 / (n + 1) as f64;
+        let bow = a1 * (PI * t).sin() + a2 * (2.0 * PI * t).sin();
+        let on = guided.map_or_else(|| start.truncate() + dir * (t * length), |g| g[k - 1]);
+        let p = on + side * bow;
+        path.waypoints[k] = DVec3::new(
+            p.x.clamp(frame.x[0], frame.x[1]),
+            p.y.clamp(frame.y[0], frame.y[1]),
+            z,
+        );
     }
 }
 
@@ -179,6 +246,68 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Five UAVs from one start (`frame`'s, 1000 m from the goal, 8 free waypoints).
+    fn five_from_one_start() -> Frame {
+        Frame {
+            starts: vec![DVec3::new(100.0, 100.0, 150.0); 5],
+            ..frame()
+        }
+    }
+
+    /// Whether the UAVs of `plan` (drawn on `f`) leave in the order they arrive and at least
+    /// 15 m apart sideways at the first free waypoint.
+    fn leaves_fanned(f: &Frame, plan: &Plan) -> bool {
+        let (length, dir, side) = start_goal_axes(f.starts[0], f.goal);
+        let lateral = |w: DVec3, t: f64| {
+            let on = f.starts[0].truncate() + dir * (t * length);
+            (w.truncate() - on).dot(side)
+        };
+        let t_last = f.n as f64 / (f.n + 1) as f64;
+        let sorted = |k: usize, t: f64| {
+            let mut v: Vec<(f64, usize)> = (0..plan.uavs.len())
+                .map(|u| (lateral(plan.uavs[u].waypoints[k], t), u))
+                .collect();
+            v.sort_by(|a, b| a.0.total_cmp(&b.0));
+            v
+        };
+        let departure = sorted(1, 1.0 / (f.n + 1) as f64);
+        let arrival = sorted(f.n, t_last);
+        let order = |v: &[(f64, usize)]| v.iter().map(|p| p.1).collect::<Vec<_>>();
+        order(&departure) == order(&arrival)
+            && departure.windows(2).all(|p| p[1].0 - p[0].0 >= 15.0)
+    }
+
+    /// A fanned plan's UAVs leave in the order they arrive (the paths do not cross) and at
+    /// least 15 m apart sideways at the first free waypoint (strata 60 m apart in departure
+    /// slope, jittered within their middle half).
+    #[test]
+    fn a_fanned_fleet_leaves_and_arrives_spread_in_one_order() {
+        let f = five_from_one_start();
+        let mut plan = Plan::default();
+        let mut rng = rng_from_seed(9);
+        for _ in 0..50 {
+            sample_fanned_plan(&f, &mut rng, &mut plan);
+            assert!(leaves_fanned(&f, &plan), "{plan:?}");
+        }
+    }
+
+    /// About half of the `fan` draws are fanned; a `line` draw of five UAVs rarely is.
+    #[test]
+    fn half_of_the_fan_draws_are_fanned() {
+        let f = five_from_one_start();
+        let mut plan = Plan::default();
+        let (mut fan, mut line) = (0, 0);
+        let mut rng = rng_from_seed(5);
+        for _ in 0..200 {
+            sample_fan_plan(&f, &mut rng, &mut plan);
+            fan += usize::from(leaves_fanned(&f, &plan));
+            sample_line_plan(&f, &mut rng, &mut plan);
+            line += usize::from(leaves_fanned(&f, &plan));
+        }
+        assert!((70..=150).contains(&fan), "fan: {fan} of 200 fanned");
+        assert!(line < 30, "line: {line} of 200 fanned");
     }
 
     #[test]
