@@ -221,10 +221,10 @@ pub fn assess_into(
 /// that records their violations: every UAV's terms on its waypoints (threat band,
 /// altitude, turns, climb, turning radius; under the `spso` preset and a finite cost cutoff
 /// they stop at a collision, which makes the cost +inf), checked after each UAV and for
-/// cost after all; then the flown paths are
-/// built and every UAV's terms on them (arc threats, clearance, speed, battery), checked
-/// likewise; then the communication sweep (checked for violation and cost) and proximity
-/// (checked for violation); then the recorded violations are added to `sink` in the order
+/// cost after all; then the flown paths are built and every UAV's terms on them (arc
+/// threats, clearance, speed, battery), checked likewise; then the communication sweep
+/// (checked for violation and cost) and proximity (checked for violation), which the `spso`
+/// preset does not have; then the recorded violations are added to `sink` in the order
 /// [`assess_into`] adds them, so a plan not given up gets the same bits. With
 /// [`Cutoff::NONE`] it is [`assess_into`], operation for operation.
 pub fn assess_bounded(
