@@ -19,7 +19,6 @@ use super::{
 };
 use crate::feasibility::ViolationSink;
 use crate::plan::Plan;
-use crate::world::spec::ObjectivePreset;
 use crate::world::World;
 
 /// What a bounded assessment ([`super::assess_bounded`]) may give up above: a plan whose
@@ -77,16 +76,12 @@ pub(super) fn bounded_terms(
 ) -> bool {
     let n = plan.uavs.len();
     let flies_arcs = world.flies_arcs();
+    let objective = &world.spec.objective;
     // Under the `spso` preset SPSO's terms are the whole cost and there are no fleet terms;
     // a plan with a collision costs +inf, beyond any finite cutoff, so its terms may stop
     // there.
-    let spso_preset = world.spec.objective.preset == ObjectivePreset::Spso;
-    let collisions = match (spso_preset, cutoff.cost < f64::INFINITY) {
-        (false, _) => Collisions::Penalised,
-        (true, false) => Collisions::Infinite,
-        (true, true) => Collisions::InfiniteAndStop,
-    };
-    let objective = &world.spec.objective;
+    let collisions = Collisions::of(objective, cutoff.cost);
+    let spso_preset = collisions != Collisions::Penalised;
     let mut own = ViolationSink::new(sink.profile).deferring(std::mem::take(&mut scratch.deferred));
     // The least the plan can cost: its terms known so far (the rest are >= 0) and the
     // penalty of the violations found so far.

@@ -261,11 +261,7 @@ pub fn assess_bounded(
         }
         // When it flies arcs, what is flown holds the turns' tangents.
         let flown = flies_arcs.then_some(motion);
-        let collisions = if spso_preset {
-            spso::Collisions::Infinite
-        } else {
-            spso::Collisions::Penalised
-        };
+        let collisions = spso::Collisions::of(&world.spec.objective, f64::INFINITY);
         for u in 0..n {
             let on_waypoints =
                 waypoint_terms(world, u, plan, (&scratch.timed, flown), collisions, sink);

@@ -17,6 +17,7 @@ use glam::DVec3;
 use crate::feasibility::{At, ViolationKind, ViolationSink};
 use crate::plan::Path;
 use crate::timing::TimedPath;
+use crate::world::spec::{ObjectivePreset, ObjectiveSpec};
 use crate::world::threat::{point_segment_distance, segment_box_misses};
 use crate::world::World;
 
@@ -52,6 +53,20 @@ pub enum Collisions {
     /// +inf, and the terms stop at the first (the rest at 0, the later violations not
     /// reported): for a bounded assessment, to which a plan costing +inf is of no use.
     InfiniteAndStop,
+}
+
+impl Collisions {
+    /// What a collision costs under `objective` for an assessment that only matters below
+    /// `cost_cutoff` (+inf: a full one): +inf under the `spso` preset, stopping there when the
+    /// cutoff is finite; penalised otherwise.
+    #[must_use]
+    pub fn of(objective: &ObjectiveSpec, cost_cutoff: f64) -> Self {
+        match (objective.preset, cost_cutoff < f64::INFINITY) {
+            (ObjectivePreset::Paper, _) => Self::Penalised,
+            (ObjectivePreset::Spso, false) => Self::Infinite,
+            (ObjectivePreset::Spso, true) => Self::InfiniteAndStop,
+        }
+    }
 }
 
 /// Computes J1..J4 for UAV `uav` and reports threat and altitude violations.

@@ -145,9 +145,10 @@ impl Abc {
         let old = x[j];
         x[j] = into_bound(&ev.bounds()[j], old + phi * (old - xkj));
         // The candidate matters only if it beats source i, which costs no less than the best
-        // so far, so the evaluation may stop once its cost is known to exceed source i's. It
+        // so far, so the evaluation may stop once its cost is known to exceed source i's (or
+        // to be +inf when source i's is: `cutoff_to_beat`). It
         // is one coordinate away from source i, so it is evaluated on source i's buffers.
-        let Some(e) = ev.evaluate_cost_bounded_in(x, self.eval[i].cost, i) else {
+        let Some(e) = ev.evaluate_cost_bounded_in(x, self.eval[i].cutoff_to_beat(), i) else {
             x[j] = old;
             return None;
         };

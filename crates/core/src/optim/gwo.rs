@@ -139,9 +139,10 @@ impl Gwo {
         let mut evals = Vec::with_capacity(self.n);
         // With three leaders, a wolf matters only if it costs less than delta, whose cost
         // only falls while the pack is offered: its evaluation may stop above delta's cost
-        // at the start (the same run, for less; docs/performance.md).
+        // at the start, or at +inf when delta's is +inf (the same run, for less;
+        // docs/performance.md).
         let cutoff = if self.leaders.len == 3 {
-            self.leaders.eval[2].cost
+            self.leaders.eval[2].cutoff_to_beat()
         } else {
             f64::INFINITY
         };
