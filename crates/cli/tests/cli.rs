@@ -367,6 +367,62 @@ fn scenario_generate_writes_a_scenario_that_plans() {
 }
 
 #[test]
+fn scenario_generate_on_a_dem_names_it_from_where_the_scenario_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir_all(dir.path().join("dem")).unwrap();
+    std::fs::create_dir_all(dir.path().join("scenarios")).unwrap();
+    let mut grid = String::from(
+        "ncols 61\nnrows 41\nxllcorner 300000\nyllcorner 5000000\ncellsize 15\nNODATA_value -9999\n",
+    );
+    for row in 0..41 {
+        let line: Vec<String> = (0..61).map(|c| format!("{}", 100 + row + c)).collect();
+        grid.push_str(&line.join(" "));
+        grid.push('\n');
+    }
+    std::fs::write(dir.path().join("dem/hill.asc"), grid).unwrap();
+    swarmplan()
+        .current_dir(dir.path())
+        .args(["scenario", "generate", "--seed", "3", "--uavs", "6"])
+        .args(["--threats", "4", "--terrain", "dem/hill.asc"])
+        .args(["--out", "scenarios/g.toml"])
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(dir.path().join("scenarios/g.toml")).unwrap();
+    // Paths in a scenario are relative to the scenario file.
+    let sep = std::path::MAIN_SEPARATOR;
+    assert!(
+        text.contains(&format!("source = \"..{sep}dem{sep}hill.asc\"")),
+        "{text}"
+    );
+    // The map is the DEM's extent (x 900 m, y 600 m).
+    assert!(text.contains("x = [\n    0.0,\n    900.0,\n]"), "{text}");
+    assert!(text.contains("y = [\n    0.0,\n    600.0,\n]"), "{text}");
+    // Planned from elsewhere: the DEM is found through the scenario's folder.
+    swarmplan()
+        .current_dir(dir.path().join("dem"))
+        .args(["plan", "--evaluations", "200", "--no-figures", "--scenario"])
+        .arg(dir.path().join("scenarios/g.toml"))
+        .arg("--out")
+        .arg(dir.path().join("p"))
+        .assert()
+        .success();
+    // Printed, the scenario may be saved anywhere: the DEM's path is absolute.
+    let printed = swarmplan()
+        .current_dir(dir.path())
+        .args(["scenario", "generate", "--seed", "3", "--uavs", "6"])
+        .args(["--threats", "4", "--terrain", "dem/hill.asc"])
+        .assert()
+        .success();
+    let printed = String::from_utf8_lossy(&printed.get_output().stdout).to_string();
+    let absolute = std::fs::canonicalize(dir.path().join("dem/hill.asc")).unwrap();
+    let toml_string = toml::Value::String(absolute.display().to_string()).to_string();
+    assert!(
+        printed.contains(&format!("source = {toml_string}")),
+        "{printed}"
+    );
+}
+
+#[test]
 fn scenario_generate_frees_the_pace_and_the_delays_when_asked() {
     let dir = tempfile::tempdir().unwrap();
     let toml_path = dir.path().join("gen.toml");

@@ -13,7 +13,9 @@ use std::path::Path;
 
 use rand::Rng as _;
 use swarmplan_core::rng::{derive_seed, rng_from_seed, Rng};
+use swarmplan_core::world::energy::G;
 use swarmplan_core::world::spec::{InterferenceSpec, ScenarioSpec, UavSpec};
+use swarmplan_core::world::terrain::Terrain;
 use swarmplan_core::world::threat::Threat;
 use thiserror::Error;
 
@@ -163,6 +165,115 @@ pub(crate) fn size_batteries(spec: &mut ScenarioSpec, length: f64) {
     }
 }
 
+/// Where the fleet's starts go: `columns` wide, from the start towards the interior.
+struct StartGrid {
+    columns: usize,
+    towards: [f64; 2],
+    uavs: usize,
+    shared: bool,
+}
+
+impl StartGrid {
+    fn starts(&self, start: [f64; 2]) -> Vec<[f64; 2]> {
+        (0..self.uavs)
+            .map(|i| {
+                let (c, r) = if self.shared {
+                    (0.0, 0.0)
+                } else {
+                    ((i % self.columns) as f64, (i / self.columns) as f64)
+                };
+                [
+                    start[0] + self.towards[0] * c * START_SPACING_M,
+                    start[1] + self.towards[1] * r * START_SPACING_M,
+                ]
+            })
+            .collect()
+    }
+}
+
+/// Offsets (fractions of the map's width and height, positive inwards) tried around a
+/// corner's place (0.15 or 0.85) on a DEM: -0.10 to 0.20 in steps of 0.02.
+const CORNER_OFFSETS: [f64; 16] = [
+    -0.10, -0.08, -0.06, -0.04, -0.02, 0.0, 0.02, 0.04, 0.06, 0.08, 0.10, 0.12, 0.14, 0.16, 0.18,
+    0.20,
+];
+
+/// The place near `corner` (fractions of the map) whose ground is gentlest around every
+/// point `points` puts there (the starts of the fleet, or UGV0 alone). Why: a UAV starts and
+/// arrives at a fixed height above ground and its first and last legs are one waypoint
+/// spacing long, so on a DEM a start at the foot of a cliff can need a climb beyond the
+/// limit whatever the planner does (the procedural terrain is gentle, and the generated
+/// suites are fixed instances, so this is only done on a DEM). Candidates are tried in a
+/// fixed order, the corner's own place first, and the first of the gentlest is kept.
+fn gentlest_near(
+    terrain: &Terrain,
+    corner: [f64; 2],
+    points: impl Fn([f64; 2]) -> Vec<[f64; 2]>,
+    at: impl Fn([f64; 2]) -> [f64; 2],
+) -> [f64; 2] {
+    let inward = |f: f64, o: f64| if f < 0.5 { f + o } else { f - o };
+    let mut offsets = CORNER_OFFSETS;
+    offsets.sort_by(|a, b| a.abs().total_cmp(&b.abs()));
+    let mut best = (f64::INFINITY, at(corner));
+    for &ox in &offsets {
+        for &oy in &offsets {
+            let p = at([inward(corner[0], ox), inward(corner[1], oy)]);
+            let steepest = points(p)
+                .iter()
+                .map(|&q| steepest_slope(terrain, q))
+                .fold(0.0, f64::max);
+            if steepest < best.0 {
+                best = (steepest, p);
+            }
+        }
+    }
+    best.1
+}
+
+/// The steepest mean slope (rise over run) from `p` to the ground 50 and 100 m away, over 16
+/// bearings.
+fn steepest_slope(terrain: &Terrain, p: [f64; 2]) -> f64 {
+    let h = terrain.height(p[0], p[1]);
+    let mut steepest: f64 = 0.0;
+    for k in 0..16 {
+        let (sin, cos) = (f64::from(k) * std::f64::consts::PI / 8.0).sin_cos();
+        for r in [50.0, 100.0] {
+            let rise = terrain.height(p[0] + r * cos, p[1] + r * sin) - h;
+            steepest = steepest.max(rise.abs() / r);
+        }
+    }
+    steepest
+}
+
+/// Metres a path at constant height above ground climbs from `a` to `b` on the straight
+/// line, in `segments` equal legs (the ground sampled where its waypoints would be).
+fn ascent_along(terrain: &Terrain, a: [f64; 2], b: [f64; 2], segments: usize) -> f64 {
+    let at = |k: usize| {
+        let f = k as f64 / segments.max(1) as f64;
+        terrain.height(a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1]))
+    };
+    (0..segments.max(1))
+        .map(|k| (at(k + 1) - at(k)).max(0.0))
+        .sum()
+}
+
+/// On a DEM the ground can rise hundreds of metres between start and goal, and climbing
+/// costs m g per metre ([`swarmplan_core::world::energy`]), which the length rule of
+/// [`size_batteries`] does not cover (the procedural terrain is gentle, and the generated
+/// suites are fixed instances, so it stays as it is there). Each battery gets room for the
+/// straight line's `ascent` half again (a detour may climb more), on top of that rule.
+fn add_climb_allowance(spec: &mut ScenarioSpec, ascent: f64) {
+    if ascent <= 0.0 {
+        return;
+    }
+    let airframe = spec.energy.model.weight_n;
+    for u in &mut spec.uavs {
+        let weight = airframe + u.payload_kg * G;
+        let climb_wh = 1.5 * weight * ascent / 3600.0 / (1.0 - u.reserve);
+        u.battery_wh = ((u.battery_wh + climb_wh) * 10.0).ceil() / 10.0;
+    }
+}
+
 fn uniform(rng: &mut Rng, lo: f64, hi: f64) -> f64 {
     let u: f64 = rng.random();
     lo + u * (hi - lo)
@@ -195,18 +306,21 @@ pub fn generate(req: &GenerateRequest) -> Result<ScenarioSpec, GenerateError> {
         }
     );
     spec.name = name;
-    let (x0, x1, y0, y1) = match &req.terrain {
+    let mut dem_terrain = None;
+    let (x0, y0, x1, y1) = match &req.terrain {
         Some(path) => {
             let dem = read_terrain(Path::new(path), &DemOptions::default())?;
             spec.terrain.source.clone_from(path);
             spec.terrain.frame = swarmplan_core::world::spec::TerrainFrame::Georeferenced;
-            dem.terrain.extent()
+            let extent = dem.terrain.extent();
+            dem_terrain = Some(dem.terrain);
+            extent
         }
         None => {
             spec.terrain.source = "procedural".into();
             spec.terrain.procedural.seed = req.seed;
             let p = &spec.terrain.procedural;
-            (0.0, p.width, 0.0, p.height)
+            (0.0, 0.0, p.width, p.height)
         }
     };
     spec.map.x = [x0, x1];
@@ -215,37 +329,38 @@ pub fn generate(req: &GenerateRequest) -> Result<ScenarioSpec, GenerateError> {
 
     // The diagonal: start near one corner, goal near the opposite one.
     let corner = rng.random_range(0..4_u32);
-    let (fx, fy) = match corner {
+    let (fx, fy): (f64, f64) = match corner {
         0 => (0.15, 0.15),
         1 => (0.85, 0.15),
         2 => (0.85, 0.85),
         _ => (0.15, 0.85),
     };
-    let start = [x0 + fx * w, y0 + fy * h];
-    let goal = [x0 + (1.0 - fx) * w, y0 + (1.0 - fy) * h];
+    // Spread starts: a square grid 40 m apart from the start corner towards the interior.
+    let grid = StartGrid {
+        columns: (req.uavs as f64).sqrt().ceil() as usize,
+        towards: [(0.5 - fx).signum(), (0.5 - fy).signum()],
+        uavs: req.uavs,
+        shared: req.shared_start,
+    };
+    let at = |f: [f64; 2]| [x0 + f[0] * w, y0 + f[1] * h];
+    let (start, goal) = match &dem_terrain {
+        None => (at([fx, fy]), at([1.0 - fx, 1.0 - fy])),
+        Some(t) => (
+            gentlest_near(t, [fx, fy], |p| grid.starts(p), at),
+            gentlest_near(t, [1.0 - fx, 1.0 - fy], |p| vec![p], at),
+        ),
+    };
     let z = spec.goal.position[2];
     spec.goal.position = [goal[0], goal[1], z];
     let (dx, dy) = (goal[0] - start[0], goal[1] - start[1]);
     let length = dx.hypot(dy);
     let template = spec.uavs.first().copied().unwrap_or_default();
-    // Spread starts: a square grid 40 m apart from the start corner towards the interior.
-    let columns = (req.uavs as f64).sqrt().ceil() as usize;
-    let (sx, sy) = (dx.signum(), dy.signum());
-    let mut starts = Vec::with_capacity(req.uavs);
-    for i in 0..req.uavs {
-        let (c, r) = if req.shared_start {
-            (0.0, 0.0)
-        } else {
-            ((i % columns) as f64, (i / columns) as f64)
-        };
-        let p = [
-            start[0] + sx * c * START_SPACING_M,
-            start[1] + sy * r * START_SPACING_M,
-        ];
-        if p[0] < x0 || p[0] > x1 || p[1] < y0 || p[1] > y1 {
-            return Err(GenerateError::StartsDoNotFit(req.uavs));
-        }
-        starts.push(p);
+    let starts = grid.starts(start);
+    if starts
+        .iter()
+        .any(|p| p[0] < x0 || p[0] > x1 || p[1] < y0 || p[1] > y1)
+    {
+        return Err(GenerateError::StartsDoNotFit(req.uavs));
     }
     spec.uavs = starts
         .iter()
@@ -298,6 +413,11 @@ pub fn generate(req: &GenerateRequest) -> Result<ScenarioSpec, GenerateError> {
         })
         .collect();
     size_batteries(&mut spec, length);
+    if let Some(terrain) = &dem_terrain {
+        let segments = spec.planning.waypoints + 1;
+        let ascent = ascent_along(terrain, start, goal, segments);
+        add_climb_allowance(&mut spec, ascent);
+    }
     if req.free_pace {
         free_pace(&mut spec);
     }
@@ -434,5 +554,120 @@ mod tests {
         assert!(generate(&request(1, 0, 3)).is_err());
         let e = generate(&request(1, 600, 3)).expect_err("600 spread starts do not fit");
         assert!(e.to_string().contains("--shared-start"), "{e}");
+    }
+
+    /// Writes an ESRI ASCII grid of `nx` x `ny` cells of `cell` metres, its lower left corner
+    /// at (x0, y0), heights from `height(x, y)` (x, y relative to that corner).
+    fn write_asc(
+        path: &Path,
+        (nx, ny, cell): (usize, usize, f64),
+        (x0, y0): (f64, f64),
+        height: impl Fn(f64, f64) -> f64,
+    ) {
+        let mut text = format!(
+            "ncols {nx}\nnrows {ny}\nxllcorner {x0}\nyllcorner {y0}\ncellsize {cell}\nNODATA_value -9999\n"
+        );
+        for row in 0..ny {
+            let y = (ny - 1 - row) as f64 * cell;
+            let line: Vec<String> = (0..nx)
+                .map(|c| format!("{:.2}", height(c as f64 * cell, y)))
+                .collect();
+            text.push_str(&line.join(" "));
+            text.push('\n');
+        }
+        std::fs::write(path, text).expect("writes the grid");
+    }
+
+    fn on_dem(path: &Path, seed: u64, uavs: usize) -> ScenarioSpec {
+        generate(&GenerateRequest {
+            terrain: Some(path.display().to_string()),
+            comm_windows: 0,
+            ..request(seed, uavs, 6)
+        })
+        .expect("generates on the DEM")
+    }
+
+    #[test]
+    fn a_dem_sets_the_map_to_its_extent() {
+        // Not square, so that x and y cannot be mixed up; the DEM's frame puts its lower left
+        // corner at (0, 0).
+        let dir = tempfile::tempdir().unwrap();
+        let dem = dir.path().join("flat.asc");
+        write_asc(&dem, (121, 81, 10.0), (500_000.0, 4_000_000.0), |_, _| {
+            300.0
+        });
+        for seed in 1..5 {
+            let s = on_dem(&dem, seed, 12);
+            assert_eq!(s.map.x, [0.0, 1200.0]);
+            assert_eq!(s.map.y, [0.0, 800.0]);
+            for p in s.uavs.iter().map(|u| u.start).chain([s.goal.position]) {
+                assert!((0.0..=1200.0).contains(&p[0]), "{p:?}");
+                assert!((0.0..=800.0).contains(&p[1]), "{p:?}");
+            }
+            // Flat ground: no climb to pay for, the length rule alone, as on procedural maps.
+            let length = (s.goal.position[0] - s.uavs[0].start[0])
+                .hypot(s.goal.position[1] - s.uavs[0].start[1]);
+            let mut by_length = s.clone();
+            by_length.uavs.iter_mut().for_each(|u| u.battery_wh = 6.0);
+            size_batteries(&mut by_length, length);
+            assert_eq!(s.uavs[0].battery_wh, by_length.uavs[0].battery_wh);
+            let text = to_toml(&s);
+            let loaded = crate::scenario::LoadedSpec {
+                spec: parse_spec(&text, "generated").expect("reads back"),
+                origin: "generated".into(),
+                base_dir: std::path::PathBuf::new(),
+                text,
+            };
+            build_world(&loaded, None).expect("builds with its DEM");
+        }
+    }
+
+    #[test]
+    fn batteries_pay_for_the_climb_on_a_dem() {
+        let dir = tempfile::tempdir().unwrap();
+        let (flat, slope) = (dir.path().join("flat.asc"), dir.path().join("slope.asc"));
+        write_asc(&flat, (101, 101, 10.0), (0.0, 0.0), |_, _| 0.0);
+        // Rising 0.5 m per metre along the diagonal, the way the fleet goes from one corner
+        // or the other: a pyramid's sides climb whichever corner the seed picks to the middle.
+        write_asc(&slope, (101, 101, 10.0), (0.0, 0.0), |x, y| {
+            500.0 - 0.5 * ((x - 500.0).abs() + (y - 500.0).abs())
+        });
+        let (a, b) = (on_dem(&flat, 3, 4), on_dem(&slope, 3, 4));
+        let airframe = a.energy.model.weight_n;
+        let weight = airframe + a.uavs[0].payload_kg * G;
+        // The path climbs to the top in the middle, about 350 m.
+        let extra_wh = b.uavs[0].battery_wh - a.uavs[0].battery_wh;
+        let climb_m = extra_wh * 3600.0 * (1.0 - a.uavs[0].reserve) / 1.5 / weight;
+        assert!(
+            (300.0..400.0).contains(&climb_m),
+            "{climb_m} m of climb paid for"
+        );
+    }
+
+    #[test]
+    fn starts_and_goal_are_moved_off_a_cliff_on_a_dem() {
+        // A 300 m wall across the map at 12-18 % of its width from the west edge, flat
+        // elsewhere: the corners' own places (15 %, 85 %) stand on or at its foot in the west.
+        let dir = tempfile::tempdir().unwrap();
+        let dem = dir.path().join("wall.asc");
+        let wall = |x: f64, _| {
+            if (120.0..=180.0).contains(&x) {
+                300.0
+            } else {
+                0.0
+            }
+        };
+        write_asc(&dem, (101, 101, 10.0), (0.0, 0.0), wall);
+        let terrain = read_terrain(&dem, &DemOptions::default()).unwrap().terrain;
+        for seed in 1..9 {
+            let s = on_dem(&dem, seed, 4);
+            for p in s.uavs.iter().map(|u| u.start).chain([s.goal.position]) {
+                let steepest = steepest_slope(&terrain, [p[0], p[1]]);
+                assert!(
+                    steepest < 1e-9,
+                    "seed {seed}: {p:?} by the wall ({steepest})"
+                );
+            }
+        }
     }
 }

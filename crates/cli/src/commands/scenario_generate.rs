@@ -1,7 +1,7 @@
 //! `swarmplan scenario generate`: a random scenario from a seed (what it draws:
 //! `swarmplan_io::generate` and `docs/scenario.md`).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use clap::Args;
@@ -43,7 +43,7 @@ pub struct ScenarioGenerateArgs {
 }
 
 pub fn run(args: &ScenarioGenerateArgs) -> Result<()> {
-    let spec = generate(&GenerateRequest {
+    let mut spec = generate(&GenerateRequest {
         seed: args.seed,
         uavs: args.uavs,
         threats: args.threats,
@@ -53,6 +53,9 @@ pub fn run(args: &ScenarioGenerateArgs) -> Result<()> {
         free_pace: args.free_pace,
         free_delays: args.free_delays,
     })?;
+    if let Some(terrain) = &args.terrain {
+        spec.terrain.source = source_for(terrain, args.out.as_deref());
+    }
     let text = format!(
         "# swarmplan scenario generate --seed {} --uavs {} --threats {}{}{}{}{}{}\n{}",
         args.seed,
@@ -88,4 +91,23 @@ pub fn run(args: &ScenarioGenerateArgs) -> Result<()> {
         None => print!("{text}"),
     }
     Ok(())
+}
+
+/// How the written scenario names the DEM: paths inside a scenario file are relative to that
+/// file, so relative to the `--out` file's folder, or absolute when the TOML goes to stdout
+/// (it may be saved anywhere). The DEM was just read, so it exists; should its path not
+/// resolve, it is written as given.
+fn source_for(terrain: &Path, out: Option<&Path>) -> String {
+    let Ok(dem) = std::fs::canonicalize(terrain) else {
+        return terrain.display().to_string();
+    };
+    let folder = out
+        .and_then(|o| std::path::absolute(o).ok())
+        .and_then(|o| o.parent().map(Path::to_path_buf));
+    folder
+        .and_then(|f| std::fs::canonicalize(f).ok())
+        .and_then(|f| pathdiff::diff_paths(&dem, f))
+        .unwrap_or(dem)
+        .display()
+        .to_string()
 }
