@@ -187,14 +187,41 @@ impl Fillet {
 
 /// Tangent lengths t_k of each waypoint of `abs` (0 at the start and the goal) for radius
 /// `radius`, into `out`.
+///
+/// A waypoint repeated (k..=last at one place) is one corner, between the places before and
+/// after the run; every waypoint of the run gets its tangent length, so the segments into
+/// and out of it must hold it (a repeat must not hide a turn: the UAV cannot stop to turn).
 pub fn tangent_lengths(abs: &[DVec3], radius: f64, out: &mut Vec<f64>) {
     out.clear();
     out.resize(abs.len(), 0.0);
-    for k in 1..abs.len().saturating_sub(1) {
-        if let Some(c) = Corner::at(abs[k - 1], abs[k], abs[k + 1]) {
-            out[k] = radius * c.tan_half;
+    for (k, last) in corners(abs) {
+        if let Some(c) = Corner::at(abs[k - 1], abs[k], abs[last + 1]) {
+            out[k..=last].fill(radius * c.tan_half);
         }
     }
+}
+
+/// The corners of the path through `abs`: (first, last) index of each run of equal inner
+/// waypoints (first = last for a waypoint not repeated), with a different place before
+/// and after it. A run at the start or the goal is not a corner.
+fn corners(abs: &[DVec3]) -> impl Iterator<Item = (usize, usize)> + '_ {
+    let n = abs.len();
+    let mut k = 1;
+    std::iter::from_fn(move || {
+        while k + 1 < n {
+            let first = k;
+            let mut last = k;
+            while last + 1 < n && abs[last + 1] == abs[first] {
+                last += 1;
+            }
+            k = last + 1;
+            // A run that reaches the goal, or repeats the place before it, is no corner.
+            if last + 1 < n && abs[first - 1] != abs[first] {
+                return Some((first, last));
+            }
+        }
+        None
+    })
 }
 
 /// Reports, for UAV `uav` with waypoints `abs`, turning radius `radius` and the tangent
@@ -212,6 +239,10 @@ pub fn check_turn_radius(
         return;
     }
     for k in 0..abs.len().saturating_sub(1) {
+        if abs[k] == abs[k + 1] {
+            // Inside a repeated waypoint: its turn is held by the segments around it.
+            continue;
+        }
         let need = tangents[k] + tangents[k + 1];
         let have = abs[k].distance(abs[k + 1]);
         if need > have + 1e-9 {
@@ -296,14 +327,26 @@ pub fn flown_polyline(
         }
     };
     out.push(abs[0]);
-    for k in 1..n - 1 {
+    let mut k = 1;
+    while k < n - 1 {
         let straight = FlownSegment {
             arc: false,
             waypoint_segment: k - 1,
         };
-        let fillet = Corner::at(abs[k - 1], abs[k], abs[k + 1]).and_then(|c| {
+        // A repeated waypoint (k..=last) is flown as one corner; a repeat of the place
+        // before it adds nothing.
+        let mut last = k;
+        while last + 2 < n && abs[last + 1] == abs[k] {
+            last += 1;
+        }
+        let corner = if abs[k - 1] == abs[k] {
+            None
+        } else {
+            Corner::at(abs[k - 1], abs[k], abs[last + 1])
+        };
+        let fillet = corner.and_then(|c| {
             // An overfull segment's corners are flown on the radius that fits.
-            let scale = fit(k - 1).min(fit(k));
+            let scale = fit(k - 1).min(fit(last));
             Fillet::of(abs[k], &c, radius * scale)
         });
         match fillet {
@@ -317,6 +360,7 @@ pub fn flown_polyline(
             }
             _ => push_point(out, from, abs[k], straight),
         }
+        k = last + 1;
     }
     let last = FlownSegment {
         arc: false,
@@ -522,5 +566,49 @@ mod tests {
         assert_eq!(t, [0.0; 3]);
         flown_polyline(&abs, 0.0, &t, &mut out, &mut from);
         assert_eq!(out, abs);
+    }
+
+    #[test]
+    fn a_repeated_waypoint_is_the_same_corner() {
+        let (a, b, c) = (
+            DVec3::new(0.0, 0.0, 100.0),
+            DVec3::new(30.0, 0.0, 100.0),
+            DVec3::new(30.0, 30.0, 100.0),
+        );
+        let verdicts = |abs: &[DVec3], radius: f64| {
+            let mut t = Vec::new();
+            tangent_lengths(abs, radius, &mut t);
+            let mut sink =
+                ViolationSink::collecting(crate::feasibility::FeasibilityProfile::Strict);
+            check_turn_radius(0, abs, |k| k as f64, radius, &t, &mut sink);
+            let amounts: Vec<f64> = sink.list.unwrap().iter().map(|v| v.amount).collect();
+            let (mut out, mut from) = (Vec::new(), Vec::new());
+            turn_tangents(abs, radius, &mut t);
+            flown_polyline(abs, radius, &t, &mut out, &mut from);
+            (amounts, out)
+        };
+        for radius in [10.0, 50.0] {
+            // At radius 50 the right angle needs 50 m on each side of the 30 m segments.
+            let (amounts, flown) = verdicts(&[a, b, c], radius);
+            assert_eq!(amounts.len(), if radius > 30.0 { 2 } else { 0 });
+            for repeated in [vec![a, b, b, c], vec![a, b, b, b, c]] {
+                assert_eq!(
+                    verdicts(&repeated, radius),
+                    (amounts.clone(), flown.clone())
+                );
+            }
+        }
+        // Repeats of the start or the goal turn nowhere, and do not fail.
+        for abs in [
+            vec![a, a, b, c],
+            vec![a, b, c, c],
+            vec![a, a, a],
+            vec![a, b, b],
+        ] {
+            let (amounts, flown) = verdicts(&abs, 50.0);
+            assert_eq!((flown.first(), flown.last()), (abs.first(), abs.last()));
+            let expected = usize::from(abs.len() == 4 && abs[1] != abs[2]) * 2;
+            assert_eq!(amounts.len(), expected, "{abs:?}");
+        }
     }
 }

@@ -187,11 +187,16 @@ fn qgc_plan_files_follow_the_documented_format_and_the_plan() {
                 let w = path.points[k].local;
                 glam::DVec3::new(w.x, w.y, world.terrain.height(w.x, w.y) + w.z)
             };
-            let want = if k == 0 || k + 1 == path.points.len() {
-                0.0
-            } else {
-                let theta = swarmplan_core::flight::turn_angle(abs(k - 1), abs(k), abs(k + 1));
-                swarmplan_core::flight::tangent_length(path.turn_radius_m, theta)
+            // A repeated waypoint turns between the places before and after it.
+            let here = abs(k);
+            let before = (0..k).rev().map(abs).find(|p| *p != here);
+            let after = (k + 1..m).map(abs).find(|p| *p != here);
+            let want = match (before, after) {
+                (Some(a), Some(c)) if k > 0 && k + 1 < m => {
+                    let theta = swarmplan_core::flight::turn_angle(a, here, c);
+                    swarmplan_core::flight::tangent_length(path.turn_radius_m, theta)
+                }
+                _ => 0.0,
             };
             assert!((pt.acceptance_m - want).abs() < 1e-6 * want.max(1.0), "{k}");
             // Altitude AMSL = terrain + AGL + the origin's altitude offset.
