@@ -512,3 +512,40 @@ fn bench_says_which_scenarios_no_plan_can_satisfy_before_running() {
     assert_eq!(err.matches(&line).count(), 1, "{err}");
     assert_eq!(err.matches("no plan can be feasible").count(), 1, "{err}");
 }
+
+#[test]
+fn a_bad_plan_export_is_said_before_the_planning() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    let o = out.to_str().unwrap();
+    // Case 2 at its default budget plans for about a second; the errors come before it,
+    // so no folder is made and nothing is planned.
+    let err = fails_with(
+        &[
+            "plan",
+            "--scenario",
+            "paper-case2",
+            "--out",
+            o,
+            "--export",
+            "bogus",
+        ],
+        2,
+        &["--export: expected qgc-plan, wpl, geojson, kml, csv or all, got `bogus`"],
+    );
+    assert!(!err.contains("planning"), "{err}");
+    assert!(!out.exists());
+    let err = fails_with(
+        &["plan", "--scenario", "tiny", "--out", o, "--export", "all"],
+        2,
+        &["--export", "tiny"],
+    );
+    assert!(!err.contains("planning"), "{err}");
+    assert!(!out.exists());
+    // And `export` names its own flag.
+    fails_with(
+        &["export", o, "--format", "nope"],
+        2,
+        &["--format: expected qgc-plan"],
+    );
+}

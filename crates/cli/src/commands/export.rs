@@ -1,6 +1,6 @@
 //! `swarmplan export DIR`: a planned mission in WGS 84 for autopilots and GIS, from the
-//! `plan.json` and `scenario.toml` that `plan` writes into DIR; and [`export_planned`],
-//! which `plan --export` calls. Formats and altitude references: `docs/export.md`.
+//! `plan.json` and `scenario.toml` that `plan` writes into DIR; and [`PlannedExport`],
+//! which `plan --export` settles before planning and writes after. Formats and altitude references: `docs/export.md`.
 
 use std::path::{Path, PathBuf};
 
@@ -77,7 +77,7 @@ fn write_all(
 }
 
 pub fn run(args: &ExportArgs) -> Result<()> {
-    let formats = ExportFormat::parse_list(&args.format)?;
+    let formats = ExportFormat::parse_list(&args.format).context("--format")?;
     let explicit = args
         .origin
         .as_deref()
@@ -123,26 +123,42 @@ fn georeferenced_by(source: FrameSource, frame: &swarmplan_io::geo::LocalFrame) 
     )
 }
 
-/// `plan --export FORMATS [--origin LAT,LON[,ALT]]`: exports the plan just made into
-/// `out`. `scenario` and `terrain` are the plan command's `--scenario` and `--terrain`.
-/// Writes only to stderr (one line on the georeferencing), so `plan --json` stays clean;
-/// returns the files written.
-pub fn export_planned(
-    scenario: &str,
-    terrain: Option<&Path>,
-    world: &World,
-    plan: &Plan,
-    formats: &str,
-    origin: Option<&str>,
-    out: &Path,
-) -> Result<Vec<PathBuf>> {
-    let formats = ExportFormat::parse_list(formats)?;
-    let explicit = origin
-        .map(|o| parse_lat_lon_alt(o, "--origin"))
-        .transpose()?;
-    let (loaded, scenario_origin) = load_spec_with_origin(scenario)?;
-    let (frame, source) = resolve_frame(&loaded, scenario_origin, terrain, explicit)?;
-    let files = write_all(world, plan, &frame, &formats, out)?;
-    eprintln!("{}", georeferenced_by(source, &frame));
-    Ok(files)
+/// What `plan --export FORMATS [--origin LAT,LON[,ALT]]` will write, settled before the
+/// planning starts, so that a mistyped format or a scenario without a georeference is said
+/// at once instead of after the run, with its results unwritten.
+pub struct PlannedExport {
+    formats: Vec<ExportFormat>,
+    frame: swarmplan_io::geo::LocalFrame,
+    source: FrameSource,
+}
+
+impl PlannedExport {
+    /// `scenario` and `terrain` are the plan command's `--scenario` and `--terrain`.
+    pub fn prepare(
+        scenario: &str,
+        terrain: Option<&Path>,
+        formats: &str,
+        origin: Option<&str>,
+    ) -> Result<Self> {
+        let formats = ExportFormat::parse_list(formats).context("--export")?;
+        let explicit = origin
+            .map(|o| parse_lat_lon_alt(o, "--origin"))
+            .transpose()?;
+        let (loaded, scenario_origin) = load_spec_with_origin(scenario)?;
+        let (frame, source) =
+            resolve_frame(&loaded, scenario_origin, terrain, explicit).context("--export")?;
+        Ok(Self {
+            formats,
+            frame,
+            source,
+        })
+    }
+
+    /// Exports the plan just made into `out`. Writes only to stderr (one line on the
+    /// georeferencing), so `plan --json` stays clean; returns the files written.
+    pub fn write(&self, world: &World, plan: &Plan, out: &Path) -> Result<Vec<PathBuf>> {
+        let files = write_all(world, plan, &self.frame, &self.formats, out)?;
+        eprintln!("{}", georeferenced_by(self.source, &self.frame));
+        Ok(files)
+    }
 }

@@ -269,6 +269,19 @@ fn uav_series(trace: &[Vec<f64>]) -> Vec<Vec<f64>> {
 pub fn run_command(args: &PlanArgs) -> Result<()> {
     let world = super::load_world(&args.scenario)?;
     let params = load_params(args.settings.params.as_ref(), args.settings.population)?;
+    // Before the folder and the run: a bad --export is said at once.
+    let export = args
+        .export
+        .as_deref()
+        .map(|formats| {
+            super::export::PlannedExport::prepare(
+                &args.scenario.scenario,
+                args.scenario.terrain.as_deref(),
+                formats,
+                args.origin.as_deref(),
+            )
+        })
+        .transpose()?;
     let out = super::out_folder::plan_folder(&args.out, args.force)?;
     let out = out.as_path();
     let method = args.method.with(args.encoding, args.init);
@@ -397,19 +410,12 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         convergence: conv_path.display().to_string(),
         exports: Vec::new(),
     };
-    if let Some(formats) = &args.export {
-        files.exports = super::export::export_planned(
-            &args.scenario.scenario,
-            args.scenario.terrain.as_deref(),
-            &world,
-            &result.plan,
-            formats,
-            args.origin.as_deref(),
-            out,
-        )?
-        .iter()
-        .map(|p| p.display().to_string())
-        .collect();
+    if let Some(export) = &export {
+        files.exports = export
+            .write(&world, &result.plan, out)?
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect();
     }
     let mut artifact = RunArtifact::new(&world, &result, req.budget, req.params, files);
     if args.attempts > 1 {

@@ -123,7 +123,7 @@ pub enum ExportError {
     },
     #[error(transparent)]
     Geo(#[from] GeoError),
-    #[error("--format: expected qgc-plan, wpl, geojson, kml, csv or all, got `{0}`")]
+    #[error("expected qgc-plan, wpl, geojson, kml, csv or all, got `{0}`")]
     Format(String),
     #[error("plan: {0}")]
     Plan(String),
