@@ -146,7 +146,7 @@ fn plans_that_cannot_be_evaluated_name_the_uav_and_waypoint() {
         ),
         (
             "plan-high-z.json",
-            &["uavs[0].waypoints:", "beyond the 3600 s the model covers"],
+            &["uavs[0].waypoints:", "beyond the 36000 s the model assesses"],
         ),
         (
             "plan-string.json",
@@ -548,4 +548,52 @@ fn a_bad_plan_export_is_said_before_the_planning() {
         2,
         &["--format: expected qgc-plan"],
     );
+}
+
+#[test]
+fn a_plan_of_a_flight_over_an_hour_is_read_back() {
+    // The channel's shadowing is tabulated for 3600 s and held after; the sweep assesses
+    // 36000 s. Plan files used to be refused beyond 3600 s at v_max, so `plan` wrote a
+    // plan it called feasible that `evaluate` and `export` then refused.
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = reproducer("slow-uavs.toml");
+    let out = dir.path().join("o");
+    let planned = swarmplan()
+        .args(["plan", "--evaluations", "200", "--no-figures", "--scenario"])
+        .arg(&scenario)
+        .arg("--out")
+        .arg(&out)
+        .timeout(Duration::from_secs(120))
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&planned.stdout).into_owned();
+    assert!(planned.status.success(), "{said}");
+    let run: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("plan.json")).unwrap()).unwrap();
+    let arrival = run["uavs"][0]["time_s"]
+        .as_array()
+        .unwrap()
+        .last()
+        .unwrap()
+        .as_f64()
+        .unwrap();
+    assert!(arrival > 3600.0, "{arrival}");
+    let evaluated = swarmplan()
+        .args(["evaluate", "--scenario"])
+        .arg(&scenario)
+        .arg("--plan")
+        .arg(out.join("plan.json"))
+        .timeout(Duration::from_secs(60))
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&evaluated.stdout).into_owned();
+    assert!(
+        evaluated.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&evaluated.stderr)
+    );
+    // The same verdict as `plan`'s.
+    let verdict = |s: &str| s.lines().find(|l| l.starts_with("feasible:")).map(str::to_owned);
+    assert!(verdict(&said).is_some(), "{said}");
+    assert_eq!(verdict(&text), verdict(&said));
 }

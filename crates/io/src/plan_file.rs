@@ -16,7 +16,7 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 use swarmplan_core::plan::{Path as UavPath, Plan};
 use swarmplan_core::timing::TimedPlan;
-use swarmplan_core::world::channel::CHANNEL_HORIZON_S;
+use swarmplan_core::cost::comm::MAX_SWEPT_S;
 use swarmplan_core::world::spec::MAX_DELAY_LIMIT;
 use swarmplan_core::world::World;
 use thiserror::Error;
@@ -279,9 +279,10 @@ pub struct InadmissiblePath {
 
 /// Checks that UAV `uav`'s waypoints (x, y, height above ground) are a path the model can
 /// evaluate: finite, inside the map box (the model is defined there), and short enough to be
-/// flown at top speed within the [`CHANNEL_HORIZON_S`] the channel is tabulated over (a longer
-/// one is no plan and would take hours to evaluate). Every reader of plans from outside
-/// (plan files, imported missions) goes through it.
+/// flown at top speed within the [`MAX_SWEPT_S`] the communication sweep assesses (a longer
+/// one is no plan and would take hours to evaluate; `plan` itself reports a flight beyond it
+/// as a communication violation, so a plan it calls feasible is always read back). Every
+/// reader of plans from outside (plan files, imported missions) goes through it.
 pub fn check_waypoints(
     world: &World,
     uav: usize,
@@ -316,11 +317,11 @@ pub fn check_waypoints(
     }
     let length: f64 = waypoints.windows(2).map(|s| s[0].distance(s[1])).sum();
     let v_max = world.spec.uavs[uav].speed[1];
-    if length / v_max > CHANNEL_HORIZON_S {
+    if length / v_max > MAX_SWEPT_S {
         return Err(InadmissiblePath {
             waypoint: None,
             message: format!(
-                "the path is {length:.3e} m long: even at v_max {v_max} m/s the flight lasts {:.3e} s, beyond the {CHANNEL_HORIZON_S} s the model covers",
+                "the path is {length:.3e} m long: even at v_max {v_max} m/s the flight lasts {:.3e} s, beyond the {MAX_SWEPT_S} s the model assesses",
                 length / v_max
             ),
         });
