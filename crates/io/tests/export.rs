@@ -650,7 +650,7 @@ fn imported_missions_outside_the_model_are_refused_naming_the_waypoint() {
         .unwrap_err()
         .to_string();
     assert!(
-        e.starts_with("m.csv: uav 0: the path is") && e.contains("beyond the 3600 s"),
+        e.starts_with("m.csv: uav 0: the path is") && e.contains("beyond the 36000 s"),
         "{e}"
     );
     let east = edit_mission_csv(&csv, "lon_deg", |lon| lon + 1.0);

@@ -438,7 +438,7 @@ mod tests {
             vec![ExportFormat::Csv, ExportFormat::Kml]
         );
         let e = ExportFormat::parse_list("csv,shp").unwrap_err().to_string();
-        assert!(e.contains("--format") && e.contains("shp"), "{e}");
+        assert!(e.contains("expected qgc-plan") && e.contains("shp"), "{e}");
         for f in ExportFormat::ALL {
             assert_eq!(f.name().parse::<ExportFormat>().unwrap(), f);
         }
