@@ -146,7 +146,10 @@ fn plans_that_cannot_be_evaluated_name_the_uav_and_waypoint() {
         ),
         (
             "plan-high-z.json",
-            &["uavs[0].waypoints:", "beyond the 36000 s the model assesses"],
+            &[
+                "uavs[0].waypoints:",
+                "beyond the 36000 s the model assesses",
+            ],
         ),
         (
             "plan-string.json",
@@ -593,7 +596,11 @@ fn a_plan_of_a_flight_over_an_hour_is_read_back() {
         String::from_utf8_lossy(&evaluated.stderr)
     );
     // The same verdict as `plan`'s.
-    let verdict = |s: &str| s.lines().find(|l| l.starts_with("feasible:")).map(str::to_owned);
+    let verdict = |s: &str| {
+        s.lines()
+            .find(|l| l.starts_with("feasible:"))
+            .map(str::to_owned)
+    };
     assert!(verdict(&said).is_some(), "{said}");
     assert_eq!(verdict(&text), verdict(&said));
 }

@@ -14,9 +14,9 @@ use std::path::Path;
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
+use swarmplan_core::cost::comm::MAX_SWEPT_S;
 use swarmplan_core::plan::{Path as UavPath, Plan};
 use swarmplan_core::timing::TimedPlan;
-use swarmplan_core::cost::comm::MAX_SWEPT_S;
 use swarmplan_core::world::spec::MAX_DELAY_LIMIT;
 use swarmplan_core::world::World;
 use thiserror::Error;
