@@ -549,3 +549,67 @@ fn records_say_when_the_best_plan_first_became_feasible() {
     let median: f64 = row[col].parse().unwrap();
     assert!(median > 0.0 && median <= 3000.0, "{median}");
 }
+
+#[test]
+fn a_resume_on_an_edited_scenario_or_foreign_records_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = dir.path().join("mine.toml");
+    let shown = Command::cargo_bin("swarmplan")
+        .unwrap()
+        .args(["scenario", "show", "tiny"])
+        .output()
+        .unwrap();
+    let original = String::from_utf8(shown.stdout).unwrap();
+    std::fs::write(&scenario, &original).unwrap();
+    let out = dir.path().join("x");
+    let run = |out: &Path| {
+        Command::cargo_bin("swarmplan")
+            .unwrap()
+            .args(["bench", "--methods", "pso", "--runs", "2", "--threads", "1"])
+            .args(["--iterations", "5", "--population", "6", "--scenarios"])
+            .arg(&scenario)
+            .arg("--out")
+            .arg(out)
+            .arg("--resume")
+            .assert()
+    };
+    run(&out).success();
+    assert!(out.join("scenarios.json").exists());
+    // Cut the last record, as a kill would, then edit the scenario: the resumed runs would
+    // be of another experiment under the same name.
+    let runs = out.join("runs.jsonl");
+    let text = std::fs::read_to_string(&runs).unwrap();
+    let first = text.lines().next().unwrap().to_string();
+    std::fs::write(&runs, format!("{first}\n")).unwrap();
+    std::fs::write(
+        &scenario,
+        original.replace("cruise_speed = 15.0", "cruise_speed = 16.0"),
+    )
+    .unwrap();
+    run(&out).code(2).stderr(predicate::str::contains(
+        "has changed since its runs there were recorded",
+    ));
+    // Restored, it resumes.
+    std::fs::write(&scenario, &original).unwrap();
+    run(&out).success();
+    assert_eq!(lines(&runs).len(), 2);
+    // A record that is no run of this experiment (an edited or concatenated runs.jsonl) is
+    // refused by resume and by aggregate.
+    let mut foreign: serde_json::Value = serde_json::from_str(&first).unwrap();
+    foreign["run"] = serde_json::json!(999);
+    let mut text = std::fs::read_to_string(&runs).unwrap();
+    text.push_str(&format!("{foreign}\n"));
+    std::fs::write(&runs, text).unwrap();
+    run(&out).code(2).stderr(predicate::str::contains(
+        "is not a run of this folder's experiment",
+    ));
+    Command::cargo_bin("swarmplan")
+        .unwrap()
+        .arg("aggregate")
+        .arg(&out)
+        .arg("--out")
+        .arg(dir.path().join("merged"))
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("#999 is not a run"));
+}

@@ -1,14 +1,16 @@
 //! Merging the folders of a sharded experiment: same experiment in each, no run twice,
 //! none missing.
 
-use std::collections::HashSet;
+use std::collections::{BTreeMap, HashSet};
 use std::path::{Path, PathBuf};
 
 use thiserror::Error;
 
 use crate::matrix::ExperimentSpec;
 use crate::record::RunRecord;
-use crate::store::{describe, read_records, read_spec, StoreError, RUNS_FILE};
+use crate::store::{
+    check_belong, describe, read_fingerprints, read_records, read_spec, StoreError, RUNS_FILE,
+};
 
 #[derive(Debug, Error)]
 pub enum AggregateError {
@@ -18,6 +20,12 @@ pub enum AggregateError {
     Store(#[from] StoreError),
     #[error("{other}: a different experiment from {first} (compare their experiment.json)")]
     Different { first: PathBuf, other: PathBuf },
+    #[error("{other}: scenario `{scenario}` is not the one its runs in {first} were made on (compare their scenarios.json)")]
+    ScenarioDiffers {
+        first: PathBuf,
+        other: PathBuf,
+        scenario: String,
+    },
     #[error("{path}: run {key} is also in {earlier}")]
     Duplicate {
         path: PathBuf,
@@ -37,6 +45,7 @@ pub fn aggregate(dirs: &[PathBuf]) -> Result<(ExperimentSpec, Vec<RunRecord>), A
     let first = dirs.first().ok_or(AggregateError::NoFolders)?;
     let spec = read_spec(first)?;
     let mut records: Vec<(RunRecord, &Path)> = Vec::new();
+    let mut fingerprints: BTreeMap<String, (String, &PathBuf)> = BTreeMap::new();
     for d in dirs {
         if read_spec(d)? != spec {
             return Err(AggregateError::Different {
@@ -44,7 +53,22 @@ pub fn aggregate(dirs: &[PathBuf]) -> Result<(ExperimentSpec, Vec<RunRecord>), A
                 other: d.clone(),
             });
         }
-        for r in read_records(d, false)? {
+        for (scenario, fp) in read_fingerprints(d)? {
+            if let Some((then, there)) = fingerprints.get(&scenario) {
+                if *then != fp {
+                    return Err(AggregateError::ScenarioDiffers {
+                        first: (*there).clone(),
+                        other: d.clone(),
+                        scenario,
+                    });
+                }
+            } else {
+                fingerprints.insert(scenario, (fp, d));
+            }
+        }
+        let shard = read_records(d, false)?;
+        check_belong(&d.join(RUNS_FILE), &spec, &shard)?;
+        for r in shard {
             records.push((r, d.as_path()));
         }
     }

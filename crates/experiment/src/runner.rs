@@ -15,7 +15,7 @@ use thiserror::Error;
 
 use crate::matrix::{ExperimentSpec, MatrixError, RunKey, Shard};
 use crate::record::RunRecord;
-use crate::store::{RecordWriter, StoreError};
+use crate::store::{check_fingerprints, RecordWriter, StoreError};
 
 #[derive(Debug, Error)]
 pub enum RunnerError {
@@ -72,6 +72,11 @@ pub fn run_experiment(
         })
         .collect::<Result<_, ScenarioError>>()?;
     let (writer, existing) = RecordWriter::open(dir, spec, opts.resume)?;
+    let fingerprints = worlds
+        .iter()
+        .map(|(name, world)| (name.clone(), world_fingerprint(world)))
+        .collect();
+    check_fingerprints(dir, &fingerprints)?;
     let done_keys: HashSet<RunKey> = existing.iter().map(RunRecord::key).collect();
     let mine: Vec<RunKey> = spec
         .runs()
@@ -136,4 +141,18 @@ pub fn run_experiment(
         executed,
         skipped,
     })
+}
+
+/// A fingerprint of what a run is made on: the scenario as planned (its TOML, after the
+/// experiment's profile) and its terrain's heights ([`swarmplan_core::world::terrain::Terrain::fingerprint`]),
+/// FNV-1a, 16 hex digits.
+#[must_use]
+pub fn world_fingerprint(world: &World) -> String {
+    let text = swarmplan_io::scenario::to_toml(&world.spec);
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in text.bytes().chain(world.terrain.fingerprint().into_bytes()) {
+        h ^= u64::from(b);
+        h = h.wrapping_mul(0x0100_0000_01b3);
+    }
+    format!("{h:016x}")
 }

@@ -1,5 +1,6 @@
-//! The files of an experiment folder: `experiment.json` (the matrix) and `runs.jsonl` (one
-//! record per finished run), written so that a kill at any moment loses at most the runs in
+//! The files of an experiment folder: `experiment.json` (the matrix), `scenarios.json` (a
+//! fingerprint of each scenario its runs were made on) and `runs.jsonl` (one record per
+//! finished run), written so that a kill at any moment loses at most the runs in
 //! flight and never leaves a corrupt line.
 //!
 //! Each record is serialised first and appended with a single `write` of the whole line to
@@ -8,7 +9,7 @@
 //! still tolerates a torn last line (a full disk, a crash of the machine): it is dropped and
 //! the file truncated before appending again.
 
-use std::collections::HashSet;
+use std::collections::{BTreeMap, HashSet};
 use std::fs::{File, OpenOptions};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -43,6 +44,91 @@ pub enum StoreError {
     NotEmpty { dir: PathBuf, count: usize },
     #[error("{path}: run {key} appears twice")]
     Duplicate { path: PathBuf, key: String },
+    #[error("{path}: run {key} is not a run of this folder's experiment ({why})")]
+    Foreign {
+        path: PathBuf,
+        key: String,
+        why: String,
+    },
+    #[error("{dir}: scenario `{scenario}` has changed since its runs there were recorded (fingerprint {then} there, {now} now); restore it, or use another --out")]
+    ScenarioChanged {
+        dir: PathBuf,
+        scenario: String,
+        then: String,
+        now: String,
+    },
+}
+
+/// The file of an experiment folder that records what each scenario was when its runs
+/// were made: name -> fingerprint (scenario and terrain).
+pub const SCENARIOS_FILE: &str = "scenarios.json";
+
+/// Reads `dir/scenarios.json` (empty if absent: folders of older builds).
+pub fn read_fingerprints(dir: &Path) -> Result<BTreeMap<String, String>, StoreError> {
+    let path = dir.join(SCENARIOS_FILE);
+    match std::fs::read_to_string(&path) {
+        Ok(text) => serde_json::from_str(&text).map_err(|e| StoreError::BadSpec {
+            path,
+            message: e.to_string(),
+        }),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(BTreeMap::new()),
+        Err(source) => Err(StoreError::Io { path, source }),
+    }
+}
+
+/// Checks `now` (scenario -> fingerprint) against what `dir` recorded, and records any
+/// scenario it did not know: a resumed experiment must run on the scenarios its records
+/// were made on, or it would mix two experiments under one name.
+pub fn check_fingerprints(dir: &Path, now: &BTreeMap<String, String>) -> Result<(), StoreError> {
+    let mut known = read_fingerprints(dir)?;
+    for (scenario, fp) in now {
+        match known.get(scenario) {
+            Some(then) if then != fp => {
+                return Err(StoreError::ScenarioChanged {
+                    dir: dir.to_path_buf(),
+                    scenario: scenario.clone(),
+                    then: then.clone(),
+                    now: fp.clone(),
+                })
+            }
+            Some(_) => {}
+            None => {
+                known.insert(scenario.clone(), fp.clone());
+            }
+        }
+    }
+    let path = dir.join(SCENARIOS_FILE);
+    let text = serde_json::to_string_pretty(&known).expect("a map serialises");
+    std::fs::write(&path, text + "\n").map_err(io(&path))
+}
+
+/// Checks that every record of `path` is a run of `spec` (its scenario, parameter set,
+/// method and run number in the matrix, under its master seed): a concatenated or edited
+/// `runs.jsonl` must not be summarised as this experiment.
+pub fn check_belong(
+    path: &Path,
+    spec: &ExperimentSpec,
+    records: &[RunRecord],
+) -> Result<(), StoreError> {
+    let runs: HashSet<RunKey> = spec.runs().into_iter().collect();
+    for r in records {
+        let why = if r.master_seed != spec.master_seed {
+            format!(
+                "master seed {}, the experiment's is {}",
+                r.master_seed, spec.master_seed
+            )
+        } else if !runs.contains(&r.key()) {
+            "not in its matrix of scenarios, parameter sets, methods and runs".to_string()
+        } else {
+            continue;
+        };
+        return Err(StoreError::Foreign {
+            path: path.to_path_buf(),
+            key: describe(&r.key()),
+            why,
+        });
+    }
+    Ok(())
 }
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> StoreError + '_ {
@@ -153,6 +239,7 @@ impl RecordWriter {
         }
         let path = dir.join(RUNS_FILE);
         check_unique(&path, &existing)?;
+        check_belong(&path, spec, &existing)?;
         let file = OpenOptions::new()
             .create(true)
             .append(true)
