@@ -604,3 +604,28 @@ fn a_plan_of_a_flight_over_an_hour_is_read_back() {
     assert!(verdict(&said).is_some(), "{said}");
     assert_eq!(verdict(&text), verdict(&said));
 }
+
+#[test]
+fn an_experiment_file_with_a_budget_of_nothing_is_refused_naming_it() {
+    let dir = tempfile::tempdir().unwrap();
+    for (field, value) in [("evaluations", 0), ("time_limit_ms", 0), ("iterations", 0)] {
+        let file = dir.path().join(format!("{field}.toml"));
+        std::fs::write(
+            &file,
+            format!(
+                "master_seed = 1\nruns = 1\nscenarios = [\"tiny\"]\nmethods = [\"pso\"]\n[budget]\n{field} = {value}\n"
+            ),
+        )
+        .unwrap();
+        let out = dir.path().join(format!("o-{field}"));
+        let (f, o) = (file.to_str().unwrap(), out.to_str().unwrap());
+        fails_with(
+            &["bench", "--experiment", f, "--out", o],
+            2,
+            &[&format!(
+                "{field}.toml: experiment: budget.{field}: expected at least 1, got 0"
+            )],
+        );
+        assert!(!out.exists(), "nothing is run or written");
+    }
+}

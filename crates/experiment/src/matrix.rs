@@ -164,6 +164,19 @@ impl ExperimentSpec {
                 "param_sets: name `{d}` appears twice"
             )));
         }
+        // A run of no evaluation would still be recorded with the cost of its first draw.
+        let zero = [
+            ("iterations", self.budget.iterations.map(|i| i as u64)),
+            ("evaluations", self.budget.evaluations),
+            ("time_limit_ms", self.budget.time_limit_ms),
+        ]
+        .into_iter()
+        .find(|(_, v)| *v == Some(0));
+        if let Some((field, _)) = zero {
+            return Err(MatrixError::Budget(format!(
+                "budget.{field}: expected at least 1, got 0"
+            )));
+        }
         for p in &self.param_sets {
             p.params
                 .validate()
@@ -283,6 +296,8 @@ pub enum MatrixError {
     Params(String),
     #[error("experiment: {0}")]
     TooLarge(String),
+    #[error("experiment: {0}")]
+    Budget(String),
     #[error("--shard: {0}")]
     Shard(String),
 }
@@ -290,6 +305,26 @@ pub enum MatrixError {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_budget_of_nothing_is_refused() {
+        for field in ["iterations", "evaluations", "time_limit_ms"] {
+            let mut spec = ExperimentSpec::paper(1);
+            match field {
+                "iterations" => spec.budget.iterations = Some(0),
+                "evaluations" => spec.budget.evaluations = Some(0),
+                _ => spec.budget.time_limit_ms = Some(0),
+            }
+            let e = spec.validate().expect_err("refused");
+            assert_eq!(
+                e.to_string(),
+                format!("experiment: budget.{field}: expected at least 1, got 0")
+            );
+        }
+        ExperimentSpec::paper(1)
+            .validate()
+            .expect("the paper's budget is valid");
+    }
 
     #[test]
     fn a_matrix_too_large_to_list_is_refused() {

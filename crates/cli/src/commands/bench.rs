@@ -173,7 +173,10 @@ fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
     if let Some(p) = args.profile {
         spec.profile = p;
     }
-    spec.validate()?;
+    spec.validate().map_err(|e| match &args.experiment {
+        Some(p) => anyhow::anyhow!("{}: {e}", p.display()),
+        None => e.into(),
+    })?;
     Ok(spec)
 }
 

@@ -239,7 +239,6 @@ pub fn load_params(path: Option<&PathBuf>, population: Option<usize>) -> Result<
     Ok(params)
 }
 
-/// The budget from the flags: iterations (default 200) and / or evaluations.
 /// The budget from the flags: iterations and / or evaluations; `default` when neither.
 pub fn budget(
     iterations: Option<usize>,
