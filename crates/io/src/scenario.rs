@@ -251,6 +251,32 @@ mod tests {
     }
 
     #[test]
+    fn arrays_of_the_wrong_length_are_rejected_either_way() {
+        let tiny = to_toml(&load_spec("tiny").expect("built in").spec);
+        for (from, to) in [
+            (
+                "speed = [\n    5.0,\n    25.0,\n]",
+                "speed = [5.0, 25.0, 30.0]",
+            ),
+            ("speed = [\n    5.0,\n    25.0,\n]", "speed = [5.0]"),
+            ("x = [\n    0.0,\n    300.0,\n]", "x = [0.0, 300.0, 500.0]"),
+            (
+                "position = [\n    270.0,\n    170.0,\n    60.0,\n]",
+                "position = [270.0, 170.0, 60.0, 1.0]",
+            ),
+        ] {
+            assert!(tiny.contains(from), "{from}");
+            let e = parse_spec(&tiny.replacen(from, to, 1), "t.toml")
+                .expect_err("wrong length")
+                .to_string();
+            assert!(
+                e.contains("t.toml") && e.contains(to) && e.contains("expected an array of"),
+                "{e}"
+            );
+        }
+    }
+
+    #[test]
     fn bad_values_name_the_field() {
         let text = BUILTIN[4]
             .1

@@ -3,10 +3,21 @@
 //! names the offending field; [`crate::world::World::new`] turns a valid spec into the
 //! precomputed world the cost function reads.
 
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize};
 
 use super::energy::RotaryWing;
 use super::threat::Threat;
+
+/// A fixed-length array of numbers that refuses extra values: serde's own arrays read the
+/// first N of a longer TOML array and drop the rest without a word (`x = [0, 300, 500]`
+/// would load as [0, 300]).
+fn exactly<'de, D: Deserializer<'de>, const N: usize>(d: D) -> Result<[f64; N], D::Error> {
+    let values = Vec::<f64>::deserialize(d)?;
+    let len = values.len();
+    values.try_into().map_err(|_| {
+        serde::de::Error::invalid_length(len, &format!("an array of {N} numbers").as_str())
+    })
+}
 
 /// One scenario: terrain, map, threats, fleet, goal, channel, energy, objective, timing.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -49,6 +60,7 @@ pub struct ScenarioSpec {
 pub struct GeoSpec {
     /// WGS 84 latitude (deg), longitude (deg) and altitude (m above mean sea level) of the
     /// local point (0, 0) at local height 0.
+    #[serde(deserialize_with = "exactly")]
     pub origin: [f64; 3],
 }
 
@@ -92,10 +104,13 @@ pub enum TerrainFrame {
 #[serde(deny_unknown_fields, default)]
 pub struct MapSpec {
     /// x range, metres ([1, 1045], SPSO's map).
+    #[serde(deserialize_with = "exactly")]
     pub x: [f64; 2],
     /// y range, metres ([1, 879]).
+    #[serde(deserialize_with = "exactly")]
     pub y: [f64; 2],
     /// Height above ground of free waypoints, metres ([100, 200], SPSO's z band).
+    #[serde(deserialize_with = "exactly")]
     pub z_agl: [f64; 2],
     /// Minimum clearance above terrain along every segment, metres (10).
     pub clearance: f64,
@@ -120,6 +135,7 @@ impl Default for MapSpec {
 #[serde(deny_unknown_fields)]
 pub struct GoalSpec {
     /// Position [x, y] and arrival height above ground [z] of the UAVs, metres.
+    #[serde(deserialize_with = "exactly")]
     pub position: [f64; 3],
     /// Antenna height of UGV0 above ground, metres (2).
     #[serde(default = "default_antenna")]
@@ -135,6 +151,7 @@ fn default_antenna() -> f64 {
 #[serde(deny_unknown_fields, default)]
 pub struct UavSpec {
     /// Start [x, y, z above ground], metres ((200, 100, 150) in the paper).
+    #[serde(deserialize_with = "exactly")]
     pub start: [f64; 3],
     /// Maximum turn angle at a waypoint, degrees (45).
     pub max_turn_deg: f64,
@@ -146,6 +163,7 @@ pub struct UavSpec {
     /// Maximum climb / dive angle of a segment, degrees (45).
     pub max_climb_deg: f64,
     /// Speed range [v_min, v_max], m/s ([5, 25]).
+    #[serde(deserialize_with = "exactly")]
     pub speed: [f64; 2],
     /// Preferred cruise speed, m/s (15).
     pub cruise_speed: f64,
@@ -198,6 +216,7 @@ pub enum CommRequirement {
 pub struct GroundNodeSpec {
     pub name: String,
     /// [x, y], metres.
+    #[serde(deserialize_with = "exactly")]
     pub position: [f64; 2],
     /// Antenna height above ground, metres (2).
     #[serde(default = "default_antenna")]
@@ -209,8 +228,10 @@ pub struct GroundNodeSpec {
 #[serde(deny_unknown_fields)]
 pub struct InterferenceSpec {
     /// [start, end] time, seconds.
+    #[serde(deserialize_with = "exactly")]
     pub time: [f64; 2],
     /// Disk centre [x, y], metres.
+    #[serde(deserialize_with = "exactly")]
     pub center: [f64; 2],
     /// Disk radius, metres.
     pub radius: f64,
@@ -372,6 +393,7 @@ pub struct TimingSpec {
     /// (one more variable per UAV block; the fleet flies at their mean). [1, 1] (the
     /// default): no choice, the paper's layout (and not written out).
     #[serde(skip_serializing_if = "is_fixed_unit_pace")]
+    #[serde(deserialize_with = "exactly")]
     pub pace: [f64; 2],
     /// Largest departure delay, as a share of the mission: UAV i may wait (hovering at its
     /// start) for delta_i x its arrival time before it leaves, with delta_i in
