@@ -213,7 +213,7 @@ fn flags_out_of_range_are_refused_before_any_work() {
             "plan", "--export", "qgc-plan", "--origin", "90,0", "--out", out,
         ],
         2,
-        &["strictly between -90 and 90", "got 90"],
+        &["within 89.999 degrees of the equator", "got 90"],
     );
     fails_with(
         &[

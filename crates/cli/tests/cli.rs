@@ -363,7 +363,7 @@ fn scenario_generate_writes_a_scenario_that_plans() {
         ])
         .assert()
         .code(2)
-        .stderr(predicates::str::contains("--threats 400: only"));
+        .stderr(predicates::str::contains("--threats 400: placed only"));
 }
 
 #[test]

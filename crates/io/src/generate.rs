@@ -25,6 +25,9 @@ use crate::scenario::{load_spec, ScenarioError};
 /// Clear distance between a threat's edge and every start and the goal, metres.
 pub const CLEAR_M: f64 = 60.0;
 
+/// Draws of a threat's place and radius allowed per threat asked for.
+pub const THREAT_DRAWS_PER_THREAT: usize = 2000;
+
 /// Spacing of spread starts, metres.
 pub const START_SPACING_M: f64 = 40.0;
 
@@ -131,7 +134,7 @@ pub enum GenerateError {
     Threats(usize),
     #[error("--comm-windows: expected at most 20, got {0}")]
     Windows(usize),
-    #[error("--threats {threats}: only {placed} fit on the {width:.0} x {height:.0} m map with {CLEAR_M} m clear of the starts and the goal; ask for fewer")]
+    #[error("--threats {threats}: placed only {placed} in {THREAT_DRAWS_PER_THREAT} random draws per threat on the {width:.0} x {height:.0} m map, disjoint and {CLEAR_M} m clear of the starts and the goal (how many fit depends on the draws); ask for fewer")]
     Crowded {
         threats: usize,
         placed: usize,
@@ -374,7 +377,7 @@ pub fn generate(req: &GenerateRequest) -> Result<ScenarioSpec, GenerateError> {
     let short = w.min(h);
     let mut threats: Vec<Threat> = Vec::with_capacity(req.threats);
     let mut attempts = 0;
-    while threats.len() < req.threats && attempts < 2000 * req.threats.max(1) {
+    while threats.len() < req.threats && attempts < THREAT_DRAWS_PER_THREAT * req.threats.max(1) {
         attempts += 1;
         let r = uniform(&mut rng, 0.03 * short, 0.07 * short);
         let (x, y) = (

@@ -30,7 +30,7 @@ pub enum PlanFileError {
     },
     #[error("{path}: not a plan file: {message}")]
     Parse { path: String, message: String },
-    #[error("{path}: {what}: made for {recorded}, not for {current}; pass --allow-other-terrain to evaluate it anyway")]
+    #[error("{path}: {what}: made for {recorded}, not for {current}; `evaluate --allow-other-terrain` assesses it anyway")]
     Provenance {
         path: String,
         what: &'static str,

@@ -298,6 +298,25 @@ mod tests {
             let text = format!("{}\n[timing]\npace = {good}\n", BUILTIN[4].1);
             assert!(parse_spec(&text, "x.toml").is_ok(), "{good}");
         }
+        // The procedural terrain's fields are named like the others, and the climb limit's
+        // range is said the same way whatever is wrong with it.
+        let tiny = to_toml(&load_spec("tiny").expect("built in").spec);
+        for (from, to, says) in [
+            ("max_height = ", "max_height = nan\nx_max_height = ", "terrain.procedural.max_height: a finite number, got NaN"),
+            ("hills = ", "hills = 1000000\nx_hills = ", "terrain.procedural.hills: at most 10000, got 1000000"),
+            ("max_climb_deg = 45.0", "max_climb_deg = 120.0", "uavs[0].max_climb_deg: a climb angle in (0, 90] degrees (90: vertical climbs allowed, as SPSO), got 120"),
+            ("max_climb_deg = 45.0", "max_climb_deg = 0.0", "uavs[0].max_climb_deg: a climb angle in (0, 90] degrees (90: vertical climbs allowed, as SPSO), got 0"),
+        ] {
+            assert!(tiny.contains(from), "{from}");
+            let text: String = tiny
+                .replacen(from, to, 1)
+                .lines()
+                .filter(|l| !l.starts_with("x_"))
+                .map(|l| format!("{l}\n"))
+                .collect();
+            let e = parse_spec(&text, "x.toml").unwrap_err().to_string();
+            assert_eq!(e, format!("x.toml: {says}"));
+        }
     }
 
     #[test]

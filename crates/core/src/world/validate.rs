@@ -15,6 +15,7 @@
 
 use thiserror::Error;
 
+use super::procedural::{ProceduralError, MAX_HILLS, MAX_NODES};
 use super::spec::{ObjectivePreset, ScenarioSpec};
 
 /// A field with a bad value.
@@ -31,6 +32,30 @@ fn err(field: impl Into<String>, expected: impl Into<String>, got: impl ToString
         field: field.into(),
         expected: expected.into(),
         got: got.to_string(),
+    }
+}
+
+/// The procedural terrain's complaint as the field it is about.
+fn procedural_field(e: ProceduralError) -> SpecError {
+    let at = |f: &str| format!("terrain.procedural.{f}");
+    match e {
+        ProceduralError::NotPositive { field, value } => {
+            err(at(field), "a positive finite number", value)
+        }
+        ProceduralError::NotFinite { field, value } => err(at(field), "a finite number", value),
+        ProceduralError::EmptyHeightRange { min, max } => err(
+            at("max_height"),
+            format!("more than min_height ({min})"),
+            max,
+        ),
+        ProceduralError::TooManyHills { hills } => {
+            err(at("hills"), format!("at most {MAX_HILLS}"), hills)
+        }
+        ProceduralError::TooManyNodes { cell, nodes } => err(
+            at("cell"),
+            format!("a cell giving at most {MAX_NODES} grid nodes (this one: about {nodes:.0}); a larger cell"),
+            cell,
+        ),
     }
 }
 
@@ -130,7 +155,7 @@ impl ScenarioSpec {
         self.terrain
             .procedural
             .validate()
-            .map_err(|e| err("terrain.procedural", "valid parameters", e))?;
+            .map_err(procedural_field)?;
         let pr = &self.terrain.procedural;
         if self.terrain.source == "procedural" && pr.cell > 0.5 * pr.width.min(pr.height) {
             return Err(err(
@@ -161,15 +186,14 @@ impl ScenarioSpec {
             for (c, v) in ["x", "y", "z"].iter().zip(u.start) {
                 finite(&f(&format!("start.{c}")), v)?;
             }
-            for (name, v) in [
-                ("max_turn_deg", u.max_turn_deg),
-                ("max_climb_deg", u.max_climb_deg),
-            ] {
-                if !(v > 0.0 && v <= 180.0) {
-                    return Err(err(f(name), "an angle in (0, 180] degrees", v));
-                }
+            if !(u.max_turn_deg > 0.0 && u.max_turn_deg <= 180.0) {
+                return Err(err(
+                    f("max_turn_deg"),
+                    "an angle in (0, 180] degrees",
+                    u.max_turn_deg,
+                ));
             }
-            if u.max_climb_deg > 90.0 {
+            if !(u.max_climb_deg > 0.0 && u.max_climb_deg <= 90.0) {
                 return Err(err(
                     f("max_climb_deg"),
                     "a climb angle in (0, 90] degrees (90: vertical climbs allowed, as SPSO)",

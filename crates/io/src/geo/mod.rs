@@ -52,7 +52,7 @@ pub enum GeoError {
     Longitude { what: String, value: f64 },
     #[error("{what}: altitude must be a number of metres in [{}, {}] (Earth's surface and the airspace above it), got {value}", MIN_ALTITUDE_M, MAX_ALTITUDE_M)]
     Altitude { what: String, value: f64 },
-    #[error("{what}: a tangent-plane origin needs a latitude strictly between -90 and 90 degrees (east and north are undefined at a pole), got {value}")]
+    #[error("{what}: a tangent-plane origin needs a latitude within 89.999 degrees of the equator (east and north are undefined at a pole, and ill-conditioned next to it), got {value}")]
     Pole { what: String, value: f64 },
     #[error("{what}: expected {expected}, got `{got}`")]
     Syntax {
