@@ -629,3 +629,54 @@ fn an_experiment_file_with_a_budget_of_nothing_is_refused_naming_it() {
         assert!(!out.exists(), "nothing is run or written");
     }
 }
+
+#[test]
+fn aggregate_and_export_check_their_out_folder_first() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("r.sh");
+    std::fs::write(&file, "#!/bin/sh\n").unwrap();
+    let shard = dir.path().join("b");
+    let b = shard.to_str().unwrap();
+    swarmplan()
+        .args([
+            "bench",
+            "--scenarios",
+            "tiny",
+            "--methods",
+            "pso",
+            "--runs",
+            "1",
+        ])
+        .args(["--iterations", "2", "--population", "4", "--out", b])
+        .assert()
+        .success();
+    let summary = std::fs::read_to_string(shard.join("summary.md")).unwrap();
+    let f = file.to_str().unwrap();
+    fails_with(&["aggregate", b, "--out", f], 2, &["r.sh: is a file"]);
+    fails_with(
+        &["aggregate", b, "--out", b],
+        2,
+        &["is one of the folders aggregated"],
+    );
+    assert_eq!(
+        std::fs::read_to_string(shard.join("summary.md")).unwrap(),
+        summary
+    );
+    let planned = dir.path().join("p");
+    let p = planned.to_str().unwrap();
+    swarmplan()
+        .args(["plan", "--scenario", "paper-case1", "--evaluations", "100"])
+        .args(["--no-figures", "--out", p])
+        .assert()
+        .success();
+    fails_with(
+        &["aggregate", b, "--out", p],
+        2,
+        &["holds a plan (plan.json)"],
+    );
+    fails_with(
+        &["export", p, "--origin", "45,7", "--out", f],
+        2,
+        &["r.sh: is a file"],
+    );
+}

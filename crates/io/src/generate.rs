@@ -207,13 +207,17 @@ const CORNER_OFFSETS: [f64; 16] = [
 /// spacing long, so on a DEM a start at the foot of a cliff can need a climb beyond the
 /// limit whatever the planner does (the procedural terrain is gentle, and the generated
 /// suites are fixed instances, so this is only done on a DEM). Candidates are tried in a
-/// fixed order, the corner's own place first, and the first of the gentlest is kept.
+/// fixed order, the corner's own place first, and the first of the gentlest whose points
+/// all lie on the map is kept (the corner's own place if none does: the caller says the
+/// starts do not fit).
 fn gentlest_near(
     terrain: &Terrain,
     corner: [f64; 2],
     points: impl Fn([f64; 2]) -> Vec<[f64; 2]>,
     at: impl Fn([f64; 2]) -> [f64; 2],
 ) -> [f64; 2] {
+    let (x0, y0, x1, y1) = terrain.extent();
+    let inside = |q: [f64; 2]| (x0..=x1).contains(&q[0]) && (y0..=y1).contains(&q[1]);
     let inward = |f: f64, o: f64| if f < 0.5 { f + o } else { f - o };
     let mut offsets = CORNER_OFFSETS;
     offsets.sort_by(|a, b| a.abs().total_cmp(&b.abs()));
@@ -221,7 +225,11 @@ fn gentlest_near(
     for &ox in &offsets {
         for &oy in &offsets {
             let p = at([inward(corner[0], ox), inward(corner[1], oy)]);
-            let steepest = points(p)
+            let placed = points(p);
+            if !placed.iter().all(|&q| inside(q)) {
+                continue;
+            }
+            let steepest = placed
                 .iter()
                 .map(|&q| steepest_slope(terrain, q))
                 .fold(0.0, f64::max);

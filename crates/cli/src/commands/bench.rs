@@ -327,10 +327,9 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
 }
 
 pub fn run_aggregate(args: &AggregateArgs) -> Result<()> {
+    super::out_folder::aggregate_folder(&args.out, &args.dirs)?;
     let (spec, records) = aggregate(&args.dirs)?;
     let summary = summarize_records(spec.master_seed, &records);
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("{}: cannot create", args.out.display()))?;
     let text = serde_json::to_string_pretty(&spec)? + "\n";
     std::fs::write(args.out.join("experiment.json"), text)?;
     eprintln!(

@@ -107,6 +107,7 @@ pub fn run(args: &ExportArgs) -> Result<()> {
     let plan = read_plan(&plan_path, &world, Provenance::MustMatch)?;
     let (frame, source) = resolve_frame(&loaded, origin, terrain.as_deref(), explicit)?;
     let out = args.out.clone().unwrap_or_else(|| args.dir.clone());
+    super::out_folder::ensure_writable(&out, "--out")?;
     let files = write_all(&world, &plan, &frame, &formats, &out)?;
     eprintln!("{}", georeferenced_by(source, &frame));
     for f in &files {

@@ -67,6 +67,30 @@ pub fn bench_folder(out: &Path) -> Result<()> {
     ensure_writable(out, "--out")
 }
 
+/// The folder `aggregate` writes its summary to: not a plan folder, not one of the shards
+/// it reads (their summaries would be replaced), and not a folder with run records of its
+/// own (its experiment.json would no longer describe them).
+pub fn aggregate_folder(out: &Path, shards: &[PathBuf]) -> Result<()> {
+    let same = |a: &Path, b: &Path| match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    };
+    if let Some(shard) = shards.iter().find(|d| same(out, d)) {
+        bail!(
+            "--out {}: is one of the folders aggregated ({}); write the summary to a new folder",
+            out.display(),
+            shard.display()
+        );
+    }
+    if out.is_dir() && holds(out, "runs.jsonl") {
+        bail!(
+            "--out {}: holds run records (runs.jsonl) of its own; write the summary to a new folder",
+            out.display()
+        );
+    }
+    bench_folder(out)
+}
+
 fn numbered(out: &Path, k: usize) -> PathBuf {
     let name = out
         .file_name()
