@@ -680,3 +680,45 @@ fn aggregate_and_export_check_their_out_folder_first() {
         &["r.sh: is a file"],
     );
 }
+
+#[test]
+fn a_waypoint_of_four_numbers_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("p");
+    swarmplan()
+        .args([
+            "plan",
+            "--scenario",
+            "tiny",
+            "--evaluations",
+            "50",
+            "--no-figures",
+        ])
+        .arg("--out")
+        .arg(&out)
+        .assert()
+        .success();
+    let mut plan: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("plan.json")).unwrap()).unwrap();
+    plan["uavs"][0]["waypoints"][1]
+        .as_array_mut()
+        .unwrap()
+        .push(serde_json::json!(1.0));
+    let edited = dir.path().join("four.json");
+    std::fs::write(&edited, plan.to_string()).unwrap();
+    fails_with(
+        &[
+            "evaluate",
+            "--scenario",
+            "tiny",
+            "--plan",
+            edited.to_str().unwrap(),
+        ],
+        2,
+        &[
+            "four.json",
+            "uavs[0].waypoints",
+            "waypoint 1: expected 3 numbers [x, y, z above ground], got 4",
+        ],
+    );
+}

@@ -314,6 +314,20 @@ fn a_different_experiment_cannot_resume_in_the_same_folder() {
         predicate::str::contains("different experiment")
             .and(predicate::str::contains("master seed")),
     );
+    // The difference is named, whichever it is.
+    bench(&out, &["--seed", "1", "--profile", "paper", "--resume"])
+        .code(2)
+        .stderr(predicate::str::contains(
+            "feasibility profile strict there, paper now",
+        ));
+    // A --resume into a new folder says that it starts, and what.
+    let fresh = dir.path().join("fresh");
+    bench(&fresh, &["--seed", "1", "--resume"])
+        .success()
+        .stderr(
+            predicate::str::contains("nothing to resume in")
+                .and(predicate::str::contains("the flags describe")),
+        );
 }
 
 #[test]

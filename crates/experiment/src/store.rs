@@ -282,10 +282,60 @@ fn diff(old: &ExperimentSpec, new: &ExperimentSpec) -> String {
             old.scenarios, new.scenarios
         )
     } else if old.methods != new.methods {
-        "other methods".into()
-    } else if old.budget != new.budget {
+        let labels = |s: &ExperimentSpec| {
+            s.methods
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join(",")
+        };
+        format!("methods {} there, {} now", labels(old), labels(new))
+    } else if old.budget != new.budget || old.budget_policy != new.budget_policy {
         "another budget".into()
+    } else if old.profile != new.profile {
+        format!(
+            "feasibility profile {} there, {} now",
+            old.profile, new.profile
+        )
+    } else if old.terrain != new.terrain {
+        let terrain = |s: &ExperimentSpec| {
+            s.terrain
+                .clone()
+                .unwrap_or_else(|| "each scenario's own".into())
+        };
+        format!("terrain {} there, {} now", terrain(old), terrain(new))
     } else {
-        "other parameters or terrain".into()
+        "other parameter sets (--params, --population)".into()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use swarmplan_core::feasibility::FeasibilityProfile;
+    use swarmplan_core::method::Method;
+
+    #[test]
+    fn a_mismatch_names_what_differs() {
+        let old = ExperimentSpec::paper(1);
+        let mut new = old.clone();
+        new.methods = vec![Method::preset("pso").expect("a preset")];
+        assert!(
+            diff(&old, &new).ends_with("there, pso now"),
+            "{}",
+            diff(&old, &new)
+        );
+        let mut new = old.clone();
+        new.profile = FeasibilityProfile::Paper;
+        assert_eq!(
+            diff(&old, &new),
+            "feasibility profile strict there, paper now"
+        );
+        let mut new = old.clone();
+        new.terrain = Some("dem.tif".into());
+        assert_eq!(
+            diff(&old, &new),
+            "terrain each scenario's own there, dem.tif now"
+        );
     }
 }

@@ -45,10 +45,29 @@ pub enum PlanFileError {
     },
 }
 
+/// Waypoints of exactly three numbers: serde's arrays read the first three of a longer list
+/// and leave the rest, which serde_json then reports as "trailing characters".
+fn points<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<[f64; 3]>, D::Error> {
+    let lists = Vec::<Vec<f64>>::deserialize(d)?;
+    lists
+        .into_iter()
+        .enumerate()
+        .map(|(k, p)| {
+            let len = p.len();
+            p.try_into().map_err(|_| {
+                serde::de::Error::custom(format!(
+                    "waypoint {k}: expected 3 numbers [x, y, z above ground], got {len}"
+                ))
+            })
+        })
+        .collect()
+}
+
 /// One UAV in a plan file.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct UavEntry {
     /// [x, y, z above ground] of each waypoint, start and goal included.
+    #[serde(deserialize_with = "points")]
     pub waypoints: Vec<[f64; 3]>,
     /// Departure delay, a share of the UAV's arrival time that it hovers at its start
     /// ([`Plan::delays`]; absent: 0, it leaves at once).

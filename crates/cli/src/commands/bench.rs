@@ -115,6 +115,18 @@ fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
         spec.validate()?;
         return Ok(spec);
     }
+    if args.resume && !stored.is_file() {
+        // A new folder or a mistyped one: say what starts rather than resume nothing silently.
+        eprintln!(
+            "bench: nothing to resume in {} (no experiment.json); starting the experiment {}",
+            args.out.display(),
+            if defines_matrix(args) {
+                "the flags describe"
+            } else {
+                "of the defaults (the paper's Tables 4-5: 2,800 runs)"
+            }
+        );
+    }
     let mut spec = match &args.experiment {
         Some(p) => {
             let text = std::fs::read_to_string(p)
