@@ -148,11 +148,9 @@ pub fn run_experiment(
 /// FNV-1a, 16 hex digits.
 #[must_use]
 pub fn world_fingerprint(world: &World) -> String {
-    let text = swarmplan_io::scenario::to_toml(&world.spec);
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for b in text.bytes().chain(world.terrain.fingerprint().into_bytes()) {
-        h ^= u64::from(b);
-        h = h.wrapping_mul(0x0100_0000_01b3);
-    }
-    format!("{h:016x}")
+    use std::hash::Hasher as _;
+    let mut h = fnv::FnvHasher::default();
+    h.write(swarmplan_io::scenario::to_toml(&world.spec).as_bytes());
+    h.write(world.terrain.fingerprint().as_bytes());
+    format!("{:016x}", h.finish())
 }

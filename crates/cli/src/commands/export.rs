@@ -1,6 +1,7 @@
 //! `swarmplan export DIR`: a planned mission in WGS 84 for autopilots and GIS, from the
 //! `plan.json` and `scenario.toml` that `plan` writes into DIR; and [`PlannedExport`],
-//! which `plan --export` settles before planning and writes after. Formats and altitude references: `docs/export.md`.
+//! which `plan --export` settles before planning and writes after. Formats and altitude
+//! references: `docs/export.md`.
 
 use std::path::{Path, PathBuf};
 

@@ -6,6 +6,8 @@
 //! SPSO's nearest cell with MATLAB rounding (half away from zero), for the `spso` cross-check.
 //! Outside the grid the height of the nearest edge node is used.
 
+use std::hash::Hasher as _;
+
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
@@ -162,7 +164,7 @@ impl Terrain {
         let (nx, ny) = self.size();
         let (ox, oy) = self.origin();
         let (cx, cy) = self.cell();
-        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+        let mut h = fnv::FnvHasher::default();
         let words = [
             nx as u64,
             ny as u64,
@@ -175,12 +177,9 @@ impl Terrain {
             .into_iter()
             .chain(self.heights().iter().map(|v| v.to_bits()))
         {
-            for b in w.to_le_bytes() {
-                h ^= u64::from(b);
-                h = h.wrapping_mul(0x0100_0000_01b3);
-            }
+            h.write(&w.to_le_bytes());
         }
-        format!("{h:016x}")
+        format!("{:016x}", h.finish())
     }
 
     #[must_use]
