@@ -627,3 +627,38 @@ fn a_resume_on_an_edited_scenario_or_foreign_records_is_refused() {
         .code(2)
         .stderr(predicate::str::contains("#999 is not a run"));
 }
+
+#[test]
+fn an_experiment_files_scenario_files_are_relative_to_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let folder = dir.path().join("exp");
+    std::fs::create_dir(&folder).unwrap();
+    let tiny = Command::cargo_bin("swarmplan")
+        .unwrap()
+        .args(["scenario", "show", "tiny"])
+        .output()
+        .unwrap();
+    std::fs::write(folder.join("mine.toml"), tiny.stdout).unwrap();
+    std::fs::write(
+        folder.join("e.toml"),
+        "master_seed = 2\nruns = 1\nscenarios = [\"tiny\", \"mine.toml\"]\nmethods = [\"pso\"]\n\n[budget]\nevaluations = 200\n",
+    )
+    .unwrap();
+    // Run from the folder above: `mine.toml` is found beside the experiment file.
+    Command::cargo_bin("swarmplan")
+        .unwrap()
+        .current_dir(dir.path())
+        .args(["bench", "--experiment", "exp/e.toml", "--out", "out"])
+        .assert()
+        .success();
+    let records = lines(&dir.path().join("out/runs.jsonl"));
+    let scenarios: Vec<&str> = records
+        .iter()
+        .map(|r| r["scenario"].as_str().unwrap())
+        .collect();
+    assert_eq!(records.len(), 2, "{scenarios:?}");
+    assert!(
+        scenarios.iter().any(|s| s.ends_with("mine.toml")),
+        "{scenarios:?}"
+    );
+}

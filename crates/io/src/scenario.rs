@@ -65,6 +65,15 @@ pub fn builtin_names() -> Vec<&'static str> {
     BUILTIN.iter().map(|(n, _)| *n).collect()
 }
 
+/// Whether `name` names a scenario (built-in, generated or an outside instance) rather than
+/// a file: what [`load_spec`] tries before reading a path.
+#[must_use]
+pub fn is_scenario_name(name: &str) -> bool {
+    BUILTIN.iter().any(|(n, _)| *n == name)
+        || crate::generate::GenerateRequest::from_name(name).is_some()
+        || crate::outside::parse_name(name).is_some()
+}
+
 /// A scenario spec with where it came from.
 #[derive(Debug, Clone)]
 pub struct LoadedSpec {

@@ -131,8 +131,9 @@ fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
         Some(p) => {
             let text = std::fs::read_to_string(p)
                 .with_context(|| format!("{}: cannot read", p.display()))?;
-            toml::from_str::<ExperimentSpec>(&text)
-                .map_err(|e| anyhow::anyhow!("{}: {}", p.display(), e.to_string().trim_end()))?
+            let spec = toml::from_str::<ExperimentSpec>(&text)
+                .map_err(|e| anyhow::anyhow!("{}: {}", p.display(), e.to_string().trim_end()))?;
+            relative_to(spec, p.parent().unwrap_or_else(|| Path::new("")))
         }
         None => ExperimentSpec::paper(1),
     };
@@ -190,6 +191,27 @@ fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
         None => e.into(),
     })?;
     Ok(spec)
+}
+
+/// An experiment file's scenario files and terrain, which are relative to the file's folder
+/// (as a scenario file's DEM is to the scenario), made relative to the current folder.
+fn relative_to(mut spec: ExperimentSpec, dir: &Path) -> ExperimentSpec {
+    let resolve = |file: &str| {
+        if Path::new(file).is_relative() {
+            dir.join(file).display().to_string()
+        } else {
+            file.to_string()
+        }
+    };
+    for s in &mut spec.scenarios {
+        if !swarmplan_io::scenario::is_scenario_name(s) {
+            *s = resolve(s);
+        }
+    }
+    if let Some(t) = &mut spec.terrain {
+        *t = resolve(t);
+    }
+    spec
 }
 
 /// The budget of an experiment in words, e.g. `equal budgets: 38700 evaluations per run`.
