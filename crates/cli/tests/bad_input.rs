@@ -208,6 +208,17 @@ fn flags_out_of_range_are_refused_before_any_work() {
         2,
         &["--seed", "whole number", "-1"],
     );
+    // A negative count is a value of the flag, not an unknown flag `-1`.
+    fails_with(
+        &["plan", "--evaluations", "-1", "--out", out],
+        2,
+        &["invalid value '-1' for '--evaluations"],
+    );
+    fails_with(
+        &["bench", "--runs", "-3", "--out", out],
+        2,
+        &["invalid value '-3' for '--runs"],
+    );
     fails_with(
         &[
             "plan", "--export", "qgc-plan", "--origin", "90,0", "--out", out,

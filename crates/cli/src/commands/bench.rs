@@ -37,13 +37,13 @@ pub struct BenchArgs {
     #[arg(long = "methods", visible_alias = "algos", value_delimiter = ',')]
     pub methods: Option<Vec<Method>>,
     /// Runs per scenario and method (default 200).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub runs: Option<usize>,
     /// Master seed (default 1); every run's seed derives from it.
     #[arg(long, allow_hyphen_values = true, value_parser = crate::parse_seed)]
     pub seed: Option<u64>,
     /// Worker threads (default: one per core).
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, allow_negative_numbers = true)]
     pub threads: usize,
     /// Output folder.
     #[arg(long, default_value = "out/bench")]

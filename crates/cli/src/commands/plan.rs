@@ -74,7 +74,7 @@ pub struct PlanArgs {
     /// keep the first feasible plan, or the least violating one. Each attempt spends the
     /// whole budget (more evaluations, not a better method; `--time-limit` bounds all of
     /// them together), and every attempt's seed is printed and stored in run.json.
-    #[arg(long, default_value_t = 1, value_parser = parse_attempts)]
+    #[arg(long, default_value_t = 1, value_parser = parse_attempts, allow_negative_numbers = true)]
     pub attempts: usize,
 }
 
@@ -197,13 +197,13 @@ pub struct SettingsArgs {
     /// Iterations per run (plan's default: 200, the paper's, for the paper's methods, 38,700
     /// evaluations for swarmplan's own; bench: see --budget). With --evaluations, whichever
     /// ends first.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub iterations: Option<usize>,
     /// Population size (default 50, the paper's; 10 for swarmplan's sub-swarms).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub population: Option<usize>,
     /// Evaluation budget per run (fair comparisons); with --iterations, whichever ends first.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub evaluations: Option<u64>,
     /// Optimizer parameters as TOML (sections pso, dls_smpso, dls_exemplar, qpso, gwo, abc,
     /// coop, lshade, cmaes).

@@ -14,16 +14,16 @@ pub struct ScenarioGenerateArgs {
     #[arg(long, allow_hyphen_values = true, value_parser = crate::parse_seed)]
     pub seed: u64,
     /// Number of UAVs.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub uavs: usize,
     /// Number of cylindrical threats.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub threats: usize,
     /// All UAVs start at one point (the paper's setting); default: 40 m apart.
     #[arg(long)]
     pub shared_start: bool,
     /// Interference windows on the way (0: none).
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, allow_negative_numbers = true)]
     pub comm_windows: usize,
     /// Let the planner choose the fleet's pace within the speed limits (timing.pace; a
     /// decision variable, docs/model.md "Pace"); default: fixed nearest cruise.

@@ -22,7 +22,7 @@ pub struct ScenarioNewArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub goal: String,
     /// Number of UAVs.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub uavs: usize,
     /// Output file (default: print the TOML).
     #[arg(long)]
@@ -31,11 +31,11 @@ pub struct ScenarioNewArgs {
     #[arg(long)]
     pub name: Option<String>,
     /// Height above ground of the start and the goal, metres.
-    #[arg(long, default_value_t = 150.0)]
+    #[arg(long, default_value_t = 150.0, allow_negative_numbers = true)]
     pub agl: f64,
     /// Map box = the start-goal box plus this margin in metres, clipped to the DEM
     /// (default: the whole DEM).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub margin: Option<f64>,
 }
 
