@@ -25,6 +25,7 @@ use crate::feasibility::{At, ViolationKind, ViolationSink};
 use crate::plan::Plan;
 use crate::timing::{TimedPath, TimedPlan};
 use crate::world::spec::TimingPolicy;
+use crate::world::threat::Threat;
 use crate::world::World;
 
 /// Beyond this closest approach (m) the Eq. 8 integral of an interval uses Simpson's rule:
@@ -48,6 +49,62 @@ pub struct ProximityScratch {
     pairs: Vec<PairResult>,
     /// Pairs swept (not taken from the memo) by the last evaluation.
     swept: usize,
+    /// Per UAV: its waypoint-to-threat share and the waypoints, size, epsilon and threats
+    /// it was computed from (a pure function of them, so kept while they are the same).
+    threat_shares: Vec<ThreatShare>,
+}
+
+/// One UAV's waypoint-to-threat part of Eq. 8 and what it was computed from.
+#[derive(Debug, Clone, Default)]
+struct ThreatShare {
+    waypoints: Vec<DVec3>,
+    /// UAV size and epsilon, as bits.
+    settings: [u64; 2],
+    /// The threats' (x, y, r), as bits.
+    threats: Vec<[u64; 3]>,
+    share: f64,
+}
+
+impl ThreatShare {
+    /// The share of a UAV of `size` at `waypoints`, recomputed only if something it
+    /// depends on differs bit for bit from the last call.
+    fn of(&mut self, waypoints: &[DVec3], size: f64, eps: f64, threats: &[Threat]) -> f64 {
+        let bits = |v: &DVec3| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
+        let settings = [size.to_bits(), eps.to_bits()];
+        let same = self.settings == settings
+            && self.waypoints.len() == waypoints.len()
+            && self
+                .waypoints
+                .iter()
+                .zip(waypoints)
+                .all(|(a, b)| bits(a) == bits(b))
+            && self.threats.len() == threats.len()
+            && self
+                .threats
+                .iter()
+                .zip(threats)
+                .all(|(a, t)| *a == [t.x.to_bits(), t.y.to_bits(), t.r.to_bits()]);
+        if !same {
+            self.settings = settings;
+            self.waypoints.clear();
+            self.waypoints.extend_from_slice(waypoints);
+            self.threats.clear();
+            self.threats.extend(
+                threats
+                    .iter()
+                    .map(|t| [t.x.to_bits(), t.y.to_bits(), t.r.to_bits()]),
+            );
+            self.share = 0.0;
+            for w in waypoints {
+                for t in threats {
+                    let (dx, dy) = (w.x - t.x, w.y - t.y);
+                    let d = ((dx * dx + dy * dy).sqrt() - t.r - size).max(0.0);
+                    self.share += 1.0 / (d * d + eps);
+                }
+            }
+        }
+        self.share
+    }
 }
 
 impl ProximityScratch {
@@ -258,16 +315,12 @@ pub fn proximity(
     let n = timed.paths.len();
     out.iter_mut().for_each(|o| *o = 0.0);
     let eps = world.spec.objective.obstacle_epsilon;
-    // Waypoint-to-threat part.
+    // Waypoint-to-threat part (summed from 0 in the same order as a fresh sweep would).
+    s.threat_shares
+        .resize_with(plan.uavs.len(), ThreatShare::default);
     for (u, path) in plan.uavs.iter().enumerate() {
         let size = world.spec.uavs[u].size;
-        for w in &path.waypoints {
-            for t in &world.spec.threats {
-                let (dx, dy) = (w.x - t.x, w.y - t.y);
-                let d = ((dx * dx + dy * dy).sqrt() - t.r - size).max(0.0);
-                out[u] += 1.0 / (d * d + eps);
-            }
-        }
+        out[u] = s.threat_shares[u].of(&path.waypoints, size, eps, &world.spec.threats);
     }
     if n < 2 {
         return;
