@@ -309,9 +309,15 @@ impl ViolationSink {
     /// are then what they would be had they been added there in the first place (no place,
     /// time or detail is replayed, so `other` must not be collecting a list).
     pub fn replay_into(&self, other: &mut ViolationSink) {
-        debug_assert!(!other.is_collecting(), "a replay carries no details");
-        for d in self.deferred.iter().flatten() {
-            other.add(
+        other.replay(self.deferred.as_deref().unwrap_or_default());
+    }
+
+    /// Adds violations recorded by a deferring sink, in their order (no place, time or
+    /// detail, so this sink must not be collecting a list).
+    pub fn replay(&mut self, found: &[Deferred]) {
+        debug_assert!(!self.is_collecting(), "a replay carries no details");
+        for d in found {
+            self.add(
                 d.kind,
                 d.uav,
                 d.amount,

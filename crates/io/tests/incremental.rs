@@ -70,6 +70,27 @@ fn outcome(problem: &PlanningProblem<'_>, x: &[f64], scratch: &mut Scratch) -> O
     )
 }
 
+/// What an optimizer's summing assessment gives: total, measure, soft measure, reports and
+/// each UAV's share of the measure, as bits. Unlike [`outcome`] this takes the memo of
+/// each UAV's own terms (a collecting sink never does).
+type Summed = (u64, u64, u64, Vec<UavReport>, Vec<u64>);
+
+fn summed(problem: &PlanningProblem<'_>, x: &[f64], scratch: &mut Scratch) -> Summed {
+    let world = problem.world();
+    let plan = problem.decode(x);
+    let n = plan.uavs.len();
+    let mut sink = ViolationSink::new(world.spec.planning.profile).sharing(n, Vec::new());
+    let (total, violation) = assess_into(world, &plan, scratch, &mut sink, false);
+    let shares = sink.by_uav.unwrap_or_default();
+    (
+        total.to_bits(),
+        violation.to_bits(),
+        sink.soft.to_bits(),
+        scratch.reports().to_vec(),
+        shares.iter().map(|s| s.to_bits()).collect(),
+    )
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(40))]
 
@@ -87,7 +108,9 @@ proptest! {
         let mut x = vec![0.0; dim];
         problem.sample_initial(&mut rng, &mut x);
         let mut warm = Scratch::default();
+        let mut warm_summing = Scratch::default();
         prop_assert_eq!(outcome(&problem, &x, &mut warm), outcome(&problem, &x, &mut Scratch::default()));
+        prop_assert_eq!(summed(&problem, &x, &mut warm_summing), summed(&problem, &x, &mut Scratch::default()));
         for (first, count, redraw) in changes {
             // Change `count` consecutive UAVs from `first`: redrawn from the initialisation,
             // or nudged by a small step (what a search near its context evaluates).
@@ -105,6 +128,9 @@ proptest! {
             }
             let incremental = outcome(&problem, &x, &mut warm);
             let full = outcome(&problem, &x, &mut Scratch::default());
+            prop_assert_eq!(incremental, full);
+            let incremental = summed(&problem, &x, &mut warm_summing);
+            let full = summed(&problem, &x, &mut Scratch::default());
             prop_assert_eq!(incremental, full);
         }
     }

@@ -114,6 +114,7 @@ pub(super) fn bounded_terms(
             plan,
             (&scratch.timed, flown),
             collisions,
+            &mut scratch.own_terms,
             &mut own,
         );
         scratch.on_waypoints[u] = on_waypoints;
@@ -141,6 +142,7 @@ pub(super) fn bounded_terms(
                 (&scratch.timed, motion),
                 (flies_arcs, exact),
                 scratch.on_waypoints[u],
+                &mut scratch.own_terms,
                 &mut own,
             );
             if over_violation(&own) {

@@ -16,6 +16,7 @@ pub mod comm;
 pub mod coverage;
 pub mod energy;
 pub mod kinematics;
+mod own_memo;
 pub mod proximity;
 pub mod safety;
 pub mod spso;
@@ -144,6 +145,8 @@ pub struct Scratch {
     deferred: Vec<crate::feasibility::Deferred>,
     /// Each UAV's terms on its waypoints in a bounded assessment, kept for its flown terms.
     on_waypoints: Vec<WaypointTerms>,
+    /// Each UAV's geometric terms, kept while its waypoints stay the same.
+    own_terms: own_memo::OwnMemo,
 }
 
 impl Scratch {
@@ -262,9 +265,17 @@ pub fn assess_bounded(
         // When it flies arcs, what is flown holds the turns' tangents.
         let flown = flies_arcs.then_some(motion);
         let collisions = spso::Collisions::of(&world.spec.objective, f64::INFINITY);
+        let own = &mut scratch.own_terms;
         for u in 0..n {
-            let on_waypoints =
-                waypoint_terms(world, u, plan, (&scratch.timed, flown), collisions, sink);
+            let on_waypoints = waypoint_terms(
+                world,
+                u,
+                plan,
+                (&scratch.timed, flown),
+                collisions,
+                own,
+                sink,
+            );
             scratch.reports[u] = flown_terms(
                 world,
                 u,
@@ -272,6 +283,7 @@ pub fn assess_bounded(
                 (&scratch.timed, motion),
                 (flies_arcs, exact),
                 on_waypoints,
+                own,
                 sink,
             );
         }
@@ -360,8 +372,29 @@ impl WaypointTerms {
 /// `flown` holds the turns' tangent lengths when the world flies arcs
 /// ([`TimedPlan::fill_tangents`]). `collisions` is [`spso::Collisions::Penalised`] but under
 /// the `spso` preset; with [`spso::Collisions::InfiniteAndStop`] a UAV whose SPSO terms
-/// are +inf gets nothing more.
+/// are +inf gets nothing more (and nothing is memoised, the terms being cut short).
 fn waypoint_terms(
+    world: &World,
+    u: usize,
+    plan: &Plan,
+    (timed, flown): (&TimedPlan, Option<&TimedPlan>),
+    collisions: spso::Collisions,
+    memo: &mut own_memo::OwnMemo,
+    sink: &mut ViolationSink,
+) -> WaypointTerms {
+    let key = (
+        u,
+        plan.uavs[u].waypoints.as_slice(),
+        world.spec.uavs[u].turn_radius,
+    );
+    let memoise = collisions != spso::Collisions::InfiniteAndStop;
+    memo.waypoint_terms(key, memoise, sink, |sink| {
+        waypoint_terms_afresh(world, u, plan, (timed, flown), collisions, sink)
+    })
+}
+
+/// [`waypoint_terms`] without the memo.
+fn waypoint_terms_afresh(
     world: &World,
     u: usize,
     plan: &Plan,
@@ -397,7 +430,9 @@ fn waypoint_terms(
 
 /// The rest of UAV `u`'s own terms and constraints, on what it flies (everything but
 /// communication and proximity, whose terms, and the weighted terms and cost,
-/// [`assess_bounded`] fills in afterwards).
+/// [`assess_bounded`] fills in afterwards). The geometric checks (arc threats, map bounds,
+/// clearance) come from `memo` for waypoints it has seen, unless clearances are `exact`.
+#[allow(clippy::too_many_arguments)] // the parts of one UAV's assessment, named
 fn flown_terms(
     world: &World,
     u: usize,
@@ -405,16 +440,20 @@ fn flown_terms(
     (timed, motion): (&TimedPlan, &TimedPlan),
     (flies_arcs, exact): (bool, bool),
     on_waypoints: WaypointTerms,
+    memo: &mut own_memo::OwnMemo,
     sink: &mut ViolationSink,
 ) -> UavReport {
     let path = &plan.uavs[u];
     let tp = &timed.paths[u];
     let fp = &motion.paths[u];
     let kin = &on_waypoints.kin;
-    if flies_arcs {
-        crate::flight::check_arc_threats(world, u, fp, sink);
-    }
-    let min_clearance = clearance::check_clearance(world, u, (path, tp), fp, exact, sink);
+    let key = (u, path.waypoints.as_slice(), world.spec.uavs[u].turn_radius);
+    let min_clearance = memo.flown_checks(key, !exact, sink, |sink| {
+        if flies_arcs {
+            crate::flight::check_arc_threats(world, u, fp, sink);
+        }
+        clearance::check_clearance(world, u, (path, tp), fp, exact, sink)
+    });
     let segments = tp.abs.len().saturating_sub(1);
     let safety = safety::safety_term(world, u, fp, segments, sink);
     let joules = energy::physical_energy(world, u, fp, kin);
