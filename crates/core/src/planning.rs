@@ -17,6 +17,21 @@ use crate::rng::Rng;
 use crate::world::World;
 use rand_distr::{Distribution, StandardNormal};
 
+/// A plan that is not of the shape an encoding decodes to.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum ShapeError {
+    #[error("the plan has {got} UAVs; the scenario has {expected}")]
+    Uavs { expected: usize, got: usize },
+    #[error(
+        "UAV {uav} has {got} waypoints (start and goal included); the scenario's encoding has {expected} (planning.waypoints free ones between start and goal)"
+    )]
+    Waypoints {
+        uav: usize,
+        expected: usize,
+        got: usize,
+    },
+}
+
 /// A world with an encoding and an initialisation.
 pub struct PlanningProblem<'w> {
     world: &'w World,
@@ -99,7 +114,31 @@ impl<'w> PlanningProblem<'w> {
         &self.corridors
     }
 
-    /// The decision vector nearest to `plan` in this encoding.
+    /// Whether `plan` has the shape this encoding decodes to (its UAV count and each UAV's
+    /// number of waypoints, start and goal included), as [`Self::encode`] needs.
+    pub fn check_shape(&self, plan: &Plan) -> Result<(), ShapeError> {
+        let lower: Vec<f64> = self.encoding.bounds().iter().map(|b| b.lo).collect();
+        let shape = self.encoding.decode(&lower);
+        if plan.uavs.len() != shape.uavs.len() {
+            return Err(ShapeError::Uavs {
+                expected: shape.uavs.len(),
+                got: plan.uavs.len(),
+            });
+        }
+        for (uav, (p, s)) in plan.uavs.iter().zip(&shape.uavs).enumerate() {
+            if p.waypoints.len() != s.waypoints.len() {
+                return Err(ShapeError::Waypoints {
+                    uav,
+                    expected: s.waypoints.len(),
+                    got: p.waypoints.len(),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The decision vector nearest to `plan` in this encoding; `plan` must have its shape
+    /// ([`Self::check_shape`]).
     #[must_use]
     pub fn encode(&self, plan: &Plan) -> Vec<f64> {
         let mut x = vec![0.0; self.encoding.bounds().len()];

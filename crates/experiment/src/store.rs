@@ -40,6 +40,8 @@ pub enum StoreError {
     BadSpec { path: PathBuf, message: String },
     #[error("{dir}: holds results of a different experiment ({what}); use another --out, or the same flags to --resume")]
     Mismatch { dir: PathBuf, what: String },
+    #[error("{dir}: another `swarmplan bench` is writing its records there now (it holds {dir}/{LOCK_FILE}); wait for it to finish, or use another --out")]
+    Busy { dir: PathBuf },
     #[error("{dir}: already holds {count} run records; pass --resume to continue them, or choose another --out")]
     NotEmpty { dir: PathBuf, count: usize },
     #[error("{path}: run {key} appears twice")]
@@ -205,6 +207,31 @@ pub fn describe(k: &RunKey) -> String {
 pub struct RecordWriter {
     path: PathBuf,
     file: Mutex<File>,
+    /// The folder's lock, held while this writer lives (released when the file closes).
+    _lock: Option<File>,
+}
+
+/// The file a bench holds locked in its folder while it writes there.
+pub const LOCK_FILE: &str = ".bench.lock";
+
+/// Takes `dir`'s lock: two benches appending to one `runs.jsonl` would each run what the
+/// other runs, and the duplicates make the folder unusable. `None` where the file system
+/// cannot lock (the bench goes on unguarded there rather than refuse to run).
+fn lock(dir: &Path) -> Result<Option<File>, StoreError> {
+    let path = dir.join(LOCK_FILE);
+    let file = OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&path)
+        .map_err(io(&path))?;
+    match file.try_lock() {
+        Ok(()) => Ok(Some(file)),
+        Err(std::fs::TryLockError::WouldBlock) => Err(StoreError::Busy {
+            dir: dir.to_path_buf(),
+        }),
+        Err(std::fs::TryLockError::Error(_)) => Ok(None),
+    }
 }
 
 impl RecordWriter {
@@ -217,6 +244,7 @@ impl RecordWriter {
         resume: bool,
     ) -> Result<(Self, Vec<RunRecord>), StoreError> {
         std::fs::create_dir_all(dir).map_err(io(dir))?;
+        let lock = lock(dir)?;
         let spec_path = dir.join(SPEC_FILE);
         if spec_path.exists() {
             let old = read_spec(dir)?;
@@ -249,6 +277,7 @@ impl RecordWriter {
             Self {
                 path,
                 file: Mutex::new(file),
+                _lock: lock,
             },
             existing,
         ))
@@ -337,5 +366,20 @@ mod tests {
             diff(&old, &new),
             "terrain each scenario's own there, dem.tif now"
         );
+    }
+
+    #[test]
+    fn a_folder_takes_one_writer_at_a_time() {
+        let dir = tempfile::tempdir().expect("a temporary folder");
+        let spec = ExperimentSpec::paper(1);
+        let (first, _) = RecordWriter::open(dir.path(), &spec, true).expect("the first writer");
+        let second = RecordWriter::open(dir.path(), &spec, true);
+        assert!(
+            matches!(second, Err(StoreError::Busy { .. })),
+            "{:?}",
+            second.err()
+        );
+        drop(first);
+        assert!(RecordWriter::open(dir.path(), &spec, true).is_ok());
     }
 }
