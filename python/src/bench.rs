@@ -8,7 +8,7 @@ use swarmplan_experiment::matrix::{BudgetPolicy, ExperimentSpec, ParamSet};
 use swarmplan_experiment::runner::{run_experiment, RunnerOptions};
 
 use crate::args;
-use crate::errors::{bad, to_py};
+use crate::errors::{bad, message, to_py};
 
 /// Most worker threads (as the CLI).
 const MAX_THREADS: i128 = 4096;
@@ -90,10 +90,18 @@ pub fn bench(
         .map_err(|e| bad(format!("{}: cannot create: {e}", out.display())))?;
     let outcome = py
         .detach(|| run_experiment(&spec, &out, opts, &mut |_| {}, &|_| {}))
-        .map_err(to_py)?;
+        .map_err(|e| bad(in_python_terms(&message(&e))))?;
     outcome
         .records
         .iter()
         .map(|r| serde_json::to_string(r).map_err(to_py))
         .collect()
+}
+
+/// A runner message, which names the CLI's flags, with this function's arguments instead.
+fn in_python_terms(message: &str) -> String {
+    message
+        .replace("--resume", "resume=True")
+        .replace("--out", "out=")
+        .replace("--shard", "shard")
 }

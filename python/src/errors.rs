@@ -15,6 +15,11 @@ create_exception!(
 /// `e` as a [`SwarmplanError`] with its message (and its causes, joined as the CLI joins
 /// them).
 pub fn to_py(e: impl std::error::Error) -> PyErr {
+    SwarmplanError::new_err(message(&e))
+}
+
+/// `e`'s message and its causes, joined as the CLI joins them.
+pub fn message(e: &dyn std::error::Error) -> String {
     let mut out = e.to_string();
     let mut cause = e.source();
     while let Some(c) = cause {
@@ -25,7 +30,7 @@ pub fn to_py(e: impl std::error::Error) -> PyErr {
         }
         cause = c.source();
     }
-    SwarmplanError::new_err(out)
+    out
 }
 
 /// A [`SwarmplanError`] with `message`.

@@ -322,6 +322,10 @@ impl Problem {
         allow_other_terrain: bool,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let plan = self.read_plan(&path, allow_other_terrain)?;
-        Ok(self.planning().encode(&plan).into_pyarray(py))
+        let planning = self.planning();
+        planning
+            .check_shape(&plan)
+            .map_err(|e| bad(format!("{}: {e}", path.display())))?;
+        Ok(planning.encode(&plan).into_pyarray(py))
     }
 }

@@ -16,6 +16,7 @@ which names the file or the field.
 from __future__ import annotations
 
 import json
+import operator
 import os
 import tempfile
 import warnings
@@ -42,6 +43,21 @@ PathLike = Union[str, "os.PathLike[str]"]
 
 def _path(p: Optional[PathLike]) -> Optional[str]:
     return None if p is None else os.fspath(p)
+
+
+def _int(name: str, v: Any) -> Any:
+    """A whole-number argument as a Python int (numpy integers included, whose own shifts
+    the native layer cannot use); beyond 128 bits it is refused here, naming the argument.
+    Anything else goes through as it is, for the native layer's message."""
+    if v is None or isinstance(v, bool):
+        return v
+    try:
+        i = operator.index(v)
+    except TypeError:
+        return v
+    if not -(2**127) <= i < 2**127:
+        raise SwarmplanError(f"{name}: {i} is too {'large' if i > 0 else 'small'}")
+    return i
 
 
 def _warn(notes: Sequence[str]) -> None:
@@ -86,6 +102,8 @@ class Problem:
         init: Optional[str] = None,
         profile: Optional[str] = None,
     ) -> None:
+        # Kept to pickle the problem (process pools) by building it again from them.
+        self._args = (os.fspath(scenario), _path(terrain), method, encoding, init, profile)
         self._p = _native.Problem(
             os.fspath(scenario), _path(terrain), method, encoding, init, profile
         )
@@ -96,6 +114,11 @@ class Problem:
         for a in (self._lower, self._upper, self._periodic):
             a.setflags(write=False)
         _warn(self._p.notes)
+
+    def __reduce__(self) -> Tuple[Any, ...]:
+        """Pickled as the arguments it was made from (files are read again where it is
+        unpickled), so a process pool can evaluate it."""
+        return (_rebuild, self._args)
 
     def __repr__(self) -> str:
         return (
@@ -197,7 +220,7 @@ class Problem:
 
         Useful to start an outside optimiser from the population swarmplan's own would use.
         """
-        return self._p.sample_initial(count, seed)
+        return self._p.sample_initial(_int("count", count), _int("seed", seed))
 
     def decode(self, x: Any) -> List[np.ndarray]:
         """The waypoints of each UAV, arrays of shape (waypoints, 3): x, y and height
@@ -242,6 +265,13 @@ class Problem:
         }
 
 
+def _rebuild(scenario, terrain, method, encoding, init, profile) -> Problem:
+    """A pickled :class:`Problem` made again from its arguments."""
+    return Problem(
+        scenario, terrain=terrain, method=method, encoding=encoding, init=init, profile=profile
+    )
+
+
 def plan(
     scenario: PathLike = "paper-case1",
     *,
@@ -276,16 +306,16 @@ def plan(
         _native.plan(
             os.fspath(scenario),
             method,
-            seed,
-            evaluations,
-            iterations,
-            population,
+            _int("seed", seed),
+            _int("evaluations", evaluations),
+            _int("iterations", iterations),
+            _int("population", population),
             _path(params),
             _path(terrain),
             profile,
             time_limit,
             until_feasible,
-            attempts,
+            _int("attempts", attempts),
         )
     )
     _warn(out["notes"])
@@ -331,16 +361,16 @@ def bench(
             folder,
             [os.fspath(s) for s in scenarios],
             list(methods),
-            runs,
-            seed,
-            evaluations,
-            iterations,
+            _int("runs", runs),
+            _int("seed", seed),
+            _int("evaluations", evaluations),
+            _int("iterations", iterations),
             budget,
-            population,
+            _int("population", population),
             _path(params),
             _path(terrain),
             profile,
-            threads,
+            _int("threads", threads),
             resume,
         )
 

@@ -73,6 +73,8 @@ def test_bad_batches_name_the_row_and_column():
     ({"profile": "lax"}, "profile: expected `strict` or `paper`, got `lax`"),
     ({"population": 2}, "population: expected a whole number in [4, 100000], got 2"),
     ({"time_limit": -1.0}, "time_limit: expected seconds in (0, 1e7], got -1"),
+    ({"seed": 2**200}, f"seed: {2**200} is too large"),
+    ({"evaluations": -(2**130)}, "evaluations: -"),
 ])
 def test_bad_plan_arguments_name_the_argument(kwargs, field):
     assert field in raised(swarmplan.plan, "tiny", **kwargs)
@@ -90,3 +92,22 @@ def test_bad_bench_arguments_name_the_argument(tmp_path):
     bad = tmp_path / "p.toml"
     bad.write_text("[gwo]\npopulation = 1\n")
     assert str(bad) in raised(swarmplan.bench, ["tiny"], ["gwo"], params=bad)
+
+
+def test_numpy_integers_are_whole_numbers():
+    # numpy's unsigned integers used to fail inside the conversion ("ufunc 'right_shift'
+    # not supported"); they are seeds and counts like any int.
+    p = swarmplan.Problem("tiny")
+    a = p.sample_initial(np.int64(2), np.uint64(3))
+    b = p.sample_initial(2, 3)
+    assert np.array_equal(a, b)
+    assert "seed: expected a whole number" in raised(
+        swarmplan.plan, "tiny", seed=np.int64(-1), evaluations=100)
+
+
+def test_a_folder_with_records_is_named_in_python_terms(tmp_path):
+    out = tmp_path / "b"
+    swarmplan.bench(["tiny"], ["gwo"], evaluations=100, out=out)
+    message = raised(swarmplan.bench, ["tiny"], ["gwo"], evaluations=100, out=out)
+    assert "pass resume=True" in message and "another out=" in message, message
+    assert "--" not in message, message

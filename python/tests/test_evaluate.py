@@ -97,3 +97,31 @@ def test_encode_plan_round_trips_the_cli_plan(cli, tmp_path):
     x = p.encode_plan(out / "plan.json")
     want = json.loads((out / "run.json").read_text())["report"]["cost"]["total"]
     assert math.isclose(p.evaluate(x)[0], want, rel_tol=1e-9)
+
+
+@pytest.mark.parametrize("waypoints", [2, 8])
+def test_encode_plan_refuses_a_plan_with_another_number_of_waypoints(cli, tmp_path, waypoints):
+    # A plan of `tiny` edited to 2 or 8 free waypoints (tiny has 4): same name and
+    # terrain, so only its shape tells. It used to panic (fewer) or encode another plan
+    # without a word (more).
+    scenario = run_cli(cli, "scenario", "show", "tiny").stdout
+    edited = tmp_path / "edited.toml"
+    edited.write_text(scenario.replace("waypoints = 4", f"waypoints = {waypoints}"))
+    out = tmp_path / "out"
+    run_cli(cli, "plan", "--scenario", str(edited), "--evaluations", "300", "--seed", "1",
+            "--no-figures", "--out", str(out))
+    p = swarmplan.Problem("tiny")
+    with pytest.raises(swarmplan.SwarmplanError, match=r"UAV 0 has \d+ waypoints.*has 6"):
+        p.encode_plan(out / "plan.json")
+
+
+def test_a_problem_pickles_for_process_pools():
+    import copy
+    import pickle
+
+    p = swarmplan.Problem("tiny", method="gwo", profile="paper")
+    q = pickle.loads(pickle.dumps(p))
+    x = p.sample_initial(3, 7)
+    assert np.array_equal(p.evaluate(x)[0], q.evaluate(x)[0])
+    assert (q.method, q.profile, q.dimension) == (p.method, p.profile, p.dimension)
+    assert copy.deepcopy(p).name == p.name

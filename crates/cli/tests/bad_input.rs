@@ -733,3 +733,55 @@ fn a_waypoint_of_four_numbers_is_named() {
         ],
     );
 }
+
+#[test]
+fn folders_of_records_without_a_summary_say_which_command_completes_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let folder = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
+    let bench = |extra: &[&str], out: &str| {
+        swarmplan()
+            .args([
+                "bench",
+                "--scenarios",
+                "tiny",
+                "--methods",
+                "pso",
+                "--runs",
+                "2",
+                "--evaluations",
+                "200",
+            ])
+            .args(extra)
+            .args(["--out", out])
+            .assert()
+            .success();
+    };
+    // A bench whose summary was never written (interrupted, or run from Python).
+    let cut = folder("cut");
+    bench(&[], &cut);
+    std::fs::remove_file(dir.path().join("cut/summary.md")).unwrap();
+    fails_with(
+        &["report", &cut],
+        2,
+        &[
+            "holds run records but no summary.md",
+            "bench --resume --out",
+        ],
+    );
+    // An aggregate folder: a summary and figures, no records.
+    let (one, two, all) = (folder("s1"), folder("s2"), folder("all"));
+    bench(&["--shard", "1/2"], &one);
+    bench(&["--shard", "2/2"], &two);
+    swarmplan()
+        .args(["aggregate", &one, &two, "--out", &all])
+        .assert()
+        .success();
+    fails_with(
+        &["plot", &all],
+        2,
+        &[
+            "an `aggregate` folder keeps no records",
+            "swarmplan aggregate SHARD",
+        ],
+    );
+}

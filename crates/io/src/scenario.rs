@@ -37,7 +37,7 @@ pub const BUILTIN: [(&str, &str); 5] = [
 
 #[derive(Debug, Error)]
 pub enum ScenarioError {
-    #[error("no built-in scenario and no file named `{name}`; built-in scenarios: {}; generated ones are named gen-sSEED-uUAVS-tTHREATS[-wWINDOWS][-shared], outside benchmark instances outside-K[-uUAVS]", builtin_names().join(", "))]
+    #[error("no built-in scenario and no file named `{name}`; built-in scenarios: {}; generated ones are named gen-sSEED-uUAVS-tTHREATS[-wWINDOWS][-shared][-pace][-delay], outside benchmark instances outside-K[-uUAVS][-delay]", builtin_names().join(", "))]
     Unknown { name: String },
     #[error("{path}: cannot read: {source}")]
     Read {

@@ -162,6 +162,14 @@ pub fn run(args: &PlotArgs) -> Result<()> {
         );
         bench_figures(dir, &records)?
     } else {
+        if dir.join("summary.json").exists() {
+            // `aggregate` writes the summary and figures of shards, not their records.
+            anyhow::bail!(
+                "{}: holds a summary but no runs.jsonl (an `aggregate` folder keeps no records); `swarmplan aggregate SHARD... --out {}` draws its figures again",
+                dir.display(),
+                dir.display()
+            );
+        }
         anyhow::bail!("{}: holds neither plan.json nor runs.jsonl", dir.display());
     };
     for f in files {

@@ -48,6 +48,14 @@ pub fn run(args: &ReportArgs) -> Result<()> {
         let md = std::fs::read_to_string(dir.join("summary.md"))
             .with_context(|| format!("{}: cannot read", dir.join("summary.md").display()))?;
         bench_report(dir, &md)?
+    } else if dir.join("runs.jsonl").exists() {
+        // An interrupted bench, or one run from Python: the records are there, the summary
+        // is written at the end.
+        anyhow::bail!(
+            "{}: holds run records but no summary.md; `swarmplan bench --resume --out {}` runs what is missing and writes it",
+            dir.display(),
+            dir.display()
+        );
     } else {
         anyhow::bail!(
             "{}: holds neither plan.json nor summary.md; run `swarmplan plan --out DIR` or `swarmplan bench --out DIR` first",
