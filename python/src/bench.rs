@@ -7,8 +7,11 @@ use pyo3::prelude::*;
 use swarmplan_experiment::matrix::{BudgetPolicy, ExperimentSpec, ParamSet};
 use swarmplan_experiment::runner::{run_experiment, RunnerOptions};
 
+use swarmplan_core::optim::cancel::Cancel;
+
 use crate::args;
 use crate::errors::{bad, message, to_py};
+use crate::interrupt;
 
 /// Most worker threads (as the CLI).
 const MAX_THREADS: i128 = 4096;
@@ -85,12 +88,15 @@ pub fn bench(
         threads: usize::try_from(threads).map_err(to_py)?,
         shard: None,
         resume,
+        cancel: Cancel::NONE,
     };
     std::fs::create_dir_all(&out)
         .map_err(|e| bad(format!("{}: cannot create: {e}", out.display())))?;
-    let outcome = py
-        .detach(|| run_experiment(&spec, &out, opts, &mut |_| {}, &|_| {}))
-        .map_err(|e| bad(in_python_terms(&message(&e))))?;
+    let outcome = interrupt::interruptible(py, |cancel| {
+        let opts = RunnerOptions { cancel, ..opts };
+        run_experiment(&spec, &out, opts, &mut |_| {}, &|_| {})
+    })?
+    .map_err(|e| bad(in_python_terms(&message(&e))))?;
     outcome
         .records
         .iter()

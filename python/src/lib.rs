@@ -17,6 +17,7 @@ use pyo3::prelude::*;
 mod args;
 mod bench;
 mod errors;
+mod interrupt;
 mod planner;
 mod problem;
 mod scenario;

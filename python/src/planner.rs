@@ -11,7 +11,7 @@ use swarmplan_io::artifact::{ArtifactFiles, RunArtifact};
 use swarmplan_io::plan_file::plan_file;
 
 use crate::errors::{bad, to_py};
-use crate::{args, scenario};
+use crate::{args, interrupt, scenario};
 
 /// Plans `scenario` and returns JSON with `run` (the CLI's `run.json`), `plan` (its
 /// `plan.json`), `convergence` (its `convergence.csv` rows), `uav_costs` (per iteration and
@@ -70,7 +70,11 @@ pub fn plan(
             .transpose()?
             .unwrap_or(world.spec.planning.seed),
     };
-    let made = py.detach(|| run_attempts(world, &req, attempts, &mut |_, _| {}, &mut |_| {}));
+    let made = interrupt::interruptible(py, |cancel| {
+        let mut req = req.clone();
+        req.budget.cancel = cancel;
+        run_attempts(world, &req, attempts, &mut |_, _| {}, &mut |_| {})
+    })?;
     let (result, uav_trace) = (made.result, made.uav_trace);
     let mut artifact = RunArtifact::new(
         world,

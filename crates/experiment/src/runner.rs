@@ -8,6 +8,10 @@ use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use swarmplan_core::optim::cancel::Cancel;
+use swarmplan_core::optim::Termination;
 use swarmplan_core::run::{run, RunRequest};
 use swarmplan_core::world::World;
 use swarmplan_io::scenario::{build_world, load_spec, ScenarioError};
@@ -27,6 +31,10 @@ pub enum RunnerError {
     Store(#[from] StoreError),
     #[error("cannot start {threads} worker threads: {message}")]
     Pool { threads: usize, message: String },
+    /// The options' cancel flag was raised: the runs recorded stay, the rest were not run
+    /// (or stopped, and not recorded).
+    #[error("interrupted: {recorded} runs of this call were recorded; resume continues")]
+    Cancelled { recorded: usize },
 }
 
 /// How to run.
@@ -38,6 +46,9 @@ pub struct RunnerOptions {
     pub shard: Option<Shard>,
     /// Continue the records already in the folder.
     pub resume: bool,
+    /// A flag that stops the experiment between runs and the runs in flight between
+    /// iterations (none from the command line, which its signal stops).
+    pub cancel: Cancel,
 }
 
 /// What a call did.
@@ -106,32 +117,49 @@ pub fn run_experiment(
             threads: opts.threads,
             message: e.to_string(),
         })?;
-    let new: Vec<RunRecord> = pool.install(|| {
-        pending
-            .par_iter()
-            .map(|key| {
-                let world = &worlds
-                    .iter()
-                    .find(|(n, _)| *n == key.scenario)
-                    .expect("every scenario of the matrix was loaded")
-                    .1;
-                let set = spec
-                    .param_set(&key.param_set)
-                    .expect("keys come from the spec's sets");
-                let req = RunRequest {
-                    method: key.method,
-                    params: set.params,
-                    budget: spec.budget_for(key.method),
-                    seed: spec.seed(key),
-                };
-                let result = run(world, &req, &mut |_| {});
-                let record = RunRecord::new(key, spec.master_seed, set.params, &result);
-                writer.append(&record)?;
-                done(&record);
-                Ok(record)
-            })
-            .collect::<Result<Vec<_>, StoreError>>()
-    })?;
+    let recorded = AtomicUsize::new(0);
+    let new: Vec<RunRecord> = pool
+        .install(|| {
+            pending
+                .par_iter()
+                .map(|key| {
+                    if opts.cancel.requested() {
+                        return Err(Stop::Cancelled);
+                    }
+                    let world = &worlds
+                        .iter()
+                        .find(|(n, _)| *n == key.scenario)
+                        .expect("every scenario of the matrix was loaded")
+                        .1;
+                    let set = spec
+                        .param_set(&key.param_set)
+                        .expect("keys come from the spec's sets");
+                    let mut budget = spec.budget_for(key.method);
+                    budget.cancel = opts.cancel;
+                    let req = RunRequest {
+                        method: key.method,
+                        params: set.params,
+                        budget,
+                        seed: spec.seed(key),
+                    };
+                    let result = run(world, &req, &mut |_| {});
+                    if result.outcome.termination == Termination::Cancelled {
+                        return Err(Stop::Cancelled);
+                    }
+                    let record = RunRecord::new(key, spec.master_seed, set.params, &result);
+                    writer.append(&record).map_err(Stop::Store)?;
+                    recorded.fetch_add(1, Ordering::Relaxed);
+                    done(&record);
+                    Ok(record)
+                })
+                .collect::<Result<Vec<_>, Stop>>()
+        })
+        .map_err(|stop| match stop {
+            Stop::Store(e) => RunnerError::Store(e),
+            Stop::Cancelled => RunnerError::Cancelled {
+                recorded: recorded.load(Ordering::Relaxed),
+            },
+        })?;
     let executed = new.len();
     let mut records = existing;
     records.extend(new);
@@ -141,6 +169,12 @@ pub fn run_experiment(
         executed,
         skipped,
     })
+}
+
+/// Why a worker stopped the experiment.
+enum Stop {
+    Store(StoreError),
+    Cancelled,
 }
 
 /// A fingerprint of what a run is made on: the scenario as planned (its TOML, after the
@@ -153,4 +187,33 @@ pub fn world_fingerprint(world: &World) -> String {
     h.write(swarmplan_io::scenario::to_toml(&world.spec).as_bytes());
     h.write(world.terrain.fingerprint().as_bytes());
     format!("{:016x}", h.finish())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::atomic::AtomicBool;
+    use swarmplan_core::method::Method;
+
+    #[test]
+    fn a_raised_cancel_flag_records_nothing_more_and_says_so() {
+        static RAISED: AtomicBool = AtomicBool::new(true);
+        let dir = tempfile::tempdir().expect("a temporary folder");
+        let mut spec = ExperimentSpec::paper(1);
+        spec.scenarios = vec!["tiny".into()];
+        spec.methods = vec![Method::preset("pso").expect("a preset")];
+        spec.runs = 3;
+        let opts = RunnerOptions {
+            threads: 1,
+            cancel: Cancel::on(&RAISED),
+            ..RunnerOptions::default()
+        };
+        let outcome = run_experiment(&spec, dir.path(), opts, &mut |_| {}, &|_| {});
+        assert!(
+            matches!(outcome, Err(RunnerError::Cancelled { recorded: 0 })),
+            "{outcome:?}"
+        );
+        let records = std::fs::read_to_string(dir.path().join("runs.jsonl")).unwrap_or_default();
+        assert!(records.is_empty(), "{records}");
+    }
 }

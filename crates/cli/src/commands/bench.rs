@@ -269,10 +269,12 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
         super::warn_unreachable(&loaded.origin, &loaded.spec);
     }
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?;
+    // Ctrl-C stops the process itself: the records written stay, `--resume` goes on.
     let opts = RunnerOptions {
         threads: args.threads,
         shard,
         resume: args.resume,
+        cancel: swarmplan_core::optim::cancel::Cancel::NONE,
     };
     let threads = if args.threads == 0 {
         std::thread::available_parallelism().map_or(1, usize::from)

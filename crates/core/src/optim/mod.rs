@@ -77,6 +77,7 @@
 //! the population is met exactly, and that a NaN region never yields a NaN best.
 
 pub mod abc;
+pub mod cancel;
 pub mod cmaes;
 pub mod cooperative;
 pub mod dimensional;

@@ -39,6 +39,9 @@ pub struct Budget {
     /// Stop as soon as the best plan is feasible (false).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub until_feasible: bool,
+    /// A flag that stops the run between iterations ([`super::cancel`]; none).
+    #[serde(skip)]
+    pub cancel: super::cancel::Cancel,
 }
 
 impl Budget {
@@ -52,6 +55,7 @@ impl Budget {
             evaluations,
             time_limit_ms: None,
             until_feasible: false,
+            cancel: super::cancel::Cancel::NONE,
         }
     }
 
@@ -128,6 +132,9 @@ pub enum Termination {
     /// end by budget. The built-in optimizers never do this; the guard protects the loop
     /// from a faulty custom optimizer.
     Stalled,
+    /// Stopped from outside ([`super::cancel`]): an interrupted call, whose result is not
+    /// kept.
+    Cancelled,
 }
 
 /// Result of one run.
@@ -191,6 +198,9 @@ pub fn solve_watching(
     let termination = loop {
         if budget.until_feasible && optimizer.best().1.feasible() {
             break Termination::Feasible;
+        }
+        if budget.cancel.requested() {
+            break Termination::Cancelled;
         }
         if budget
             .time_limit_ms
@@ -284,6 +294,31 @@ mod tests {
         let out = solve(&p, &mut Idle, Budget::iterations(4), &mut rng, &mut |_| {});
         assert_eq!(out.termination, Termination::MaxIterations);
         assert_eq!(out.trace.len(), 5);
+    }
+
+    #[test]
+    fn a_raised_cancel_flag_stops_the_run_between_iterations() {
+        use std::sync::atomic::AtomicBool;
+        static RAISED: AtomicBool = AtomicBool::new(true);
+        static LOWERED: AtomicBool = AtomicBool::new(false);
+        let p = Zero(vec![crate::problem::Bound::new(-1.0, 1.0)]);
+        let mut rng = crate::rng::rng_from_seed(0);
+        let with = |flag: &'static AtomicBool| Budget {
+            cancel: super::super::cancel::Cancel::on(flag),
+            ..Budget::iterations(5)
+        };
+        let out = solve(&p, &mut Idle, with(&RAISED), &mut rng, &mut |_| {});
+        assert_eq!(
+            (out.termination, out.iterations),
+            (Termination::Cancelled, 0)
+        );
+        let out = solve(&p, &mut Idle, with(&LOWERED), &mut rng, &mut |_| {});
+        assert_eq!(
+            (out.termination, out.iterations),
+            (Termination::MaxIterations, 5)
+        );
+        // A flag is no part of what a budget allows.
+        assert_eq!(with(&RAISED), Budget::iterations(5));
     }
 
     #[test]
