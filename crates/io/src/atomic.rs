@@ -22,6 +22,13 @@ pub fn write_atomic(path: &Path, contents: &[u8]) -> std::io::Result<()> {
     let name = path
         .file_name()
         .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+    if !dir.is_dir() {
+        // Said of the folder, not of the temporary file the error would otherwise name.
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::NotFound,
+            format!("the folder {} does not exist", dir.display()),
+        ));
+    }
     let mut tmp = tempfile::Builder::new()
         .prefix(&format!(".{name}."))
         .suffix(".partial")
@@ -53,6 +60,9 @@ mod tests {
         let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
         assert_eq!(names.len(), 1);
         // A folder that does not exist: an error, nothing written.
-        assert!(write_atomic(&dir.path().join("no/such/x"), b"x").is_err());
+        let missing = dir.path().join("no/such/x");
+        let e = write_atomic(&missing, b"x").unwrap_err().to_string();
+        assert!(e.contains("no/such does not exist"), "{e}");
+        assert!(!e.contains(".partial"), "{e}");
     }
 }

@@ -505,6 +505,9 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         for f in &figures {
             println!("wrote {} (and .svg)", f.display());
         }
+        for f in &artifact.files.exports {
+            println!("wrote {f}");
+        }
     }
     let line = a.verdict();
     if args.json {

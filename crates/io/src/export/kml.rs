@@ -30,11 +30,35 @@ fn coord(g: &Geodetic, alt: f64) -> String {
     format!("{},{},{}", num(g.lon_deg), num(g.lat_deg), num(alt))
 }
 
+/// KML colours (aabbggrr) of the first six UAVs.
+const FIRST_COLOURS: [&str; 6] = [
+    "ff0000ff", "ff00a5ff", "ff00ff00", "ffff0000", "ffff00ff", "ffffff00",
+];
+
+/// UAV `k`'s line colour: the six above, then hues a golden angle apart, so every UAV of a
+/// large fleet has its own (UAV 6 used to repeat UAV 0's).
+fn uav_colour(k: usize) -> String {
+    if let Some(c) = FIRST_COLOURS.get(k) {
+        return (*c).to_string();
+    }
+    let hue = (k as f64 * 0.618_033_988_749_895).fract() * 6.0;
+    let x = 1.0 - (hue % 2.0 - 1.0).abs();
+    let (r, g, b) = match hue as u8 {
+        0 => (1.0, x, 0.0),
+        1 => (x, 1.0, 0.0),
+        2 => (0.0, 1.0, x),
+        3 => (0.0, x, 1.0),
+        4 => (x, 0.0, 1.0),
+        _ => (1.0, 0.0, x),
+    };
+    // Truncation intended: channels in [0, 1] to bytes.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let byte = |v: f64| (v * 255.0).round() as u8;
+    format!("ff{:02x}{:02x}{:02x}", byte(b), byte(g), byte(r))
+}
+
 /// The KML text of a mission.
 pub(crate) fn kml(m: &Mission) -> String {
-    let colours = [
-        "ff0000ff", "ff00a5ff", "ff00ff00", "ffff0000", "ffff00ff", "ffffff00",
-    ];
     let mut s = String::new();
     let _ = writeln!(s, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
     let _ = writeln!(s, r#"<kml xmlns="http://www.opengis.net/kml/2.2">"#);
@@ -45,7 +69,8 @@ pub(crate) fn kml(m: &Mission) -> String {
         escape(&format!("swarmplan {}", m.scenario))
     );
     let _ = writeln!(s, "<description>{}</description>", escape(&m.header()));
-    for (k, c) in colours.iter().enumerate() {
+    for p in &m.paths {
+        let (k, c) = (p.uav, uav_colour(p.uav));
         let _ = writeln!(
             s,
             "<Style id=\"uav{k}\"><LineStyle><color>{c}</color><width>3</width></LineStyle></Style>"
@@ -76,7 +101,7 @@ pub(crate) fn kml(m: &Mission) -> String {
                 p.points[p.points.len() - 1].time_s
             ))
         );
-        let _ = writeln!(s, "<styleUrl>#uav{}</styleUrl>", p.uav % colours.len());
+        let _ = writeln!(s, "<styleUrl>#uav{}</styleUrl>", p.uav);
         let _ = writeln!(
             s,
             "<LineString><altitudeMode>absolute</altitudeMode><coordinates>{}</coordinates></LineString>",
@@ -137,5 +162,19 @@ mod tests {
             "a&lt;b&gt;&amp;&quot;c&quot;&apos;d&apos;"
         );
         assert_eq!(escape("x\u{7}y"), "x y");
+    }
+
+    #[test]
+    fn each_uav_of_a_large_fleet_has_its_own_colour() {
+        let colours: Vec<String> = (0..100).map(uav_colour).collect();
+        assert_eq!(colours[0], "ff0000ff");
+        assert!(colours
+            .iter()
+            .all(|c| c.len() == 8 && c.bytes().all(|b| b.is_ascii_hexdigit())));
+        for k in 0..12 {
+            for j in 0..k {
+                assert_ne!(colours[j], colours[k], "UAVs {j} and {k}");
+            }
+        }
     }
 }
