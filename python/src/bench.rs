@@ -5,7 +5,8 @@ use std::path::PathBuf;
 
 use pyo3::prelude::*;
 use swarmplan_experiment::matrix::{BudgetPolicy, ExperimentSpec, ParamSet};
-use swarmplan_experiment::runner::{run_experiment, RunnerOptions};
+use swarmplan_experiment::runner::{run_experiment, RunnerError, RunnerOptions};
+use swarmplan_experiment::store::StoreError;
 
 use swarmplan_core::optim::cancel::Cancel;
 
@@ -96,7 +97,7 @@ pub fn bench(
         let opts = RunnerOptions { cancel, ..opts };
         run_experiment(&spec, &out, opts, &mut |_| {}, &|_| {})
     })?
-    .map_err(|e| bad(in_python_terms(&message(&e))))?;
+    .map_err(|e| bad(in_python_terms(&e)))?;
     outcome
         .records
         .iter()
@@ -104,10 +105,27 @@ pub fn bench(
         .collect()
 }
 
-/// A runner message, which names the CLI's flags, with this function's arguments instead.
-fn in_python_terms(message: &str) -> String {
-    message
-        .replace("--resume", "resume=True")
-        .replace("--out", "out=")
-        .replace("--shard", "shard")
+/// The runner's message with its advice (the part after the last `; `, which names the
+/// CLI's flags) given in this function's arguments instead; the rest (folders, scenario
+/// names) as it is.
+fn in_python_terms(e: &RunnerError) -> String {
+    let advice = match e {
+        RunnerError::Store(s) => match s {
+            StoreError::Mismatch { .. } => {
+                Some("use another out, or the same arguments with resume=True")
+            }
+            StoreError::Busy { .. } => Some("wait for it to finish, or use another out"),
+            StoreError::NotEmpty { .. } => {
+                Some("pass resume=True to continue them, or choose another out")
+            }
+            StoreError::ScenarioChanged { .. } => Some("restore it, or use another out"),
+            _ => None,
+        },
+        _ => None,
+    };
+    let text = message(e);
+    match advice.zip(text.rsplit_once("; ")) {
+        Some((advice, (head, _))) => format!("{head}; {advice}"),
+        None => text,
+    }
 }

@@ -3,13 +3,14 @@
 //! The interpreter only runs its signal handlers between bytecodes of the main thread, so a
 //! `plan` or `bench` running in Rust would ignore Ctrl-C until it returned (a long bench:
 //! hours; every run still made, then the records thrown away by the exception). So the work
-//! runs on a worker thread while the calling thread asks the interpreter for signals every
-//! 50 ms; on one (its handler raised, e.g. `KeyboardInterrupt`) it raises the work's cancel
+//! runs on a worker thread while the calling thread waits for it and, every 50 ms, asks the
+//! interpreter for signals; on one (its handler raised, e.g. `KeyboardInterrupt`) it raises the work's cancel
 //! flag (`swarmplan_core::optim::cancel`), waits for the work to stop between iterations
 //! or runs, and returns the handler's exception. A bench's records written so far stay in
 //! its folder, so `resume=True` continues.
 
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::RecvTimeoutError;
 use std::sync::Mutex;
 use std::time::Duration;
 
@@ -35,10 +36,24 @@ pub fn interruptible<T: Send>(
         .and_then(|mut free| free.pop())
         .unwrap_or_else(|| Box::leak(Box::new(AtomicBool::new(false))));
     flag.store(false, Ordering::Relaxed);
+    let (finished, done) = std::sync::mpsc::channel::<()>();
     let outcome = std::thread::scope(|scope| {
-        let handle = scope.spawn(|| work(Cancel::on(flag)));
+        let handle = scope.spawn(move || {
+            let value = work(Cancel::on(flag));
+            // Wakes the waiting thread at once (a panic wakes it too: the sender drops).
+            let _ = finished.send(());
+            value
+        });
+        let mut done = done;
         loop {
-            if handle.is_finished() {
+            // The receiver goes into the released section and comes back (it may move
+            // between threads, not be shared).
+            let waited;
+            (done, waited) = py.detach(move || {
+                let waited = done.recv_timeout(POLL);
+                (done, waited)
+            });
+            if waited != Err(RecvTimeoutError::Timeout) {
                 return Ok(handle.join());
             }
             if let Err(signal) = py.check_signals() {
@@ -47,7 +62,6 @@ pub fn interruptible<T: Send>(
                 let _ = py.detach(|| handle.join());
                 return Err(signal);
             }
-            py.detach(|| std::thread::sleep(POLL));
         }
     });
     if let Ok(mut free) = FREE.lock() {

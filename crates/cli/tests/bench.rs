@@ -657,8 +657,26 @@ fn an_experiment_files_scenario_files_are_relative_to_it() {
         .map(|r| r["scenario"].as_str().unwrap())
         .collect();
     assert_eq!(records.len(), 2, "{scenarios:?}");
-    assert!(
-        scenarios.iter().any(|s| s.ends_with("mine.toml")),
-        "{scenarios:?}"
-    );
+    assert!(scenarios.contains(&"exp/mine.toml"), "{scenarios:?}");
+    // However the experiment file is named, its scenario file is the same run identity.
+    let absolute = dir.path().join("exp/e.toml");
+    for spelling in [
+        "./exp/e.toml",
+        "exp/../exp/e.toml",
+        absolute.to_str().unwrap(),
+    ] {
+        Command::cargo_bin("swarmplan")
+            .unwrap()
+            .current_dir(dir.path())
+            .args([
+                "bench",
+                "--experiment",
+                spelling,
+                "--out",
+                "out",
+                "--resume",
+            ])
+            .assert()
+            .success();
+    }
 }

@@ -142,7 +142,7 @@ pub fn run_attempts(
         if best.as_ref().is_none_or(|(_, _, b)| record.better_than(b)) {
             best = Some((result, trace, record));
         }
-        if feasible {
+        if feasible || req.budget.cancel.requested() {
             break;
         }
     }

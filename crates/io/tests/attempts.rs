@@ -118,3 +118,18 @@ fn a_time_limit_bounds_all_attempts_together() {
     assert_eq!(got.records.len(), 1);
     assert!(got.records[0].evaluations < 38_700);
 }
+
+#[test]
+fn a_cancelled_call_runs_no_further_attempt() {
+    use std::sync::atomic::AtomicBool;
+    static RAISED: AtomicBool = AtomicBool::new(true);
+    let w = world("paper-case2");
+    let mut req = request(1500, 1);
+    req.budget.cancel = swarmplan_core::optim::cancel::Cancel::on(&RAISED);
+    let got = attempts(&w, &req, 50);
+    assert_eq!(got.records.len(), 1);
+    assert_eq!(
+        got.result.outcome.termination,
+        swarmplan_core::optim::Termination::Cancelled
+    );
+}

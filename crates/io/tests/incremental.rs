@@ -449,3 +449,34 @@ proptest! {
         }
     }
 }
+
+/// Thread-local buffers serve every problem evaluated on their thread, so what they keep of
+/// one world (each UAV's own terms) must not be served to another with the same geometry:
+/// here paper-case1 with wider threats, the same plan evaluated on buffers warmed by the
+/// original.
+#[test]
+fn buffers_that_served_one_world_serve_another_afresh() {
+    let a = &worlds()[0];
+    let mut spec = a.spec.clone();
+    for t in &mut spec.threats {
+        t.r *= 1.5;
+    }
+    let b = World::new(spec, a.terrain.clone()).unwrap();
+    let (pa, pb) = (
+        PlanningProblem::new(a, EncodingKind::Spherical, InitKind::Line),
+        PlanningProblem::new(&b, EncodingKind::Spherical, InitKind::Line),
+    );
+    let mut rng = rng_from_seed(3);
+    let mut x = vec![0.0; pa.dimension()];
+    pa.sample_initial(&mut rng, &mut x);
+    let mut warm = Scratch::default();
+    let on_a = summed(&pa, &x, &mut warm);
+    let fresh_b = summed(&pb, &x, &mut Scratch::default());
+    assert_ne!(
+        on_a.1, fresh_b.1,
+        "the worlds must differ in what the plan violates"
+    );
+    assert_eq!(summed(&pb, &x, &mut warm), fresh_b);
+    // A clone is a world of its own too (it is what one edits).
+    assert_ne!(a.clone().id(), a.id());
+}

@@ -195,13 +195,21 @@ fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
 
 /// An experiment file's scenario files and terrain, which are relative to the file's folder
 /// (as a scenario file's DEM is to the scenario), made relative to the current folder.
+/// A file's path is the run's identity (its seeds, `experiment.json`), so it is spelt one
+/// way however the experiment file was named (`e.toml`, `./e.toml`, its absolute path):
+/// relative to the current folder, without `.` or needless `..`.
 fn relative_to(mut spec: ExperimentSpec, dir: &Path) -> ExperimentSpec {
+    let cwd = std::env::current_dir().ok();
     let resolve = |file: &str| {
-        if Path::new(file).is_relative() {
-            dir.join(file).display().to_string()
-        } else {
-            file.to_string()
+        if Path::new(file).is_absolute() {
+            return file.to_string();
         }
+        let joined = tidy(&dir.join(file));
+        let from_cwd = cwd.as_deref().and_then(|cwd| {
+            let absolute = tidy(&cwd.join(&joined));
+            pathdiff::diff_paths(absolute, tidy(cwd))
+        });
+        from_cwd.unwrap_or(joined).display().to_string()
     };
     for s in &mut spec.scenarios {
         if !swarmplan_io::scenario::is_scenario_name(s) {
@@ -212,6 +220,25 @@ fn relative_to(mut spec: ExperimentSpec, dir: &Path) -> ExperimentSpec {
         *t = resolve(t);
     }
     spec
+}
+
+/// `path` without `.` components and with each `..` taking back the name before it, where
+/// there is one (lexically: symbolic links are not followed).
+fn tidy(path: &Path) -> PathBuf {
+    use std::path::Component;
+    let mut out = PathBuf::new();
+    for c in path.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir
+                if matches!(out.components().next_back(), Some(Component::Normal(_))) =>
+            {
+                out.pop();
+            }
+            other => out.push(other),
+        }
+    }
+    out
 }
 
 /// The budget of an experiment in words, e.g. `equal budgets: 38700 evaluations per run`.

@@ -240,6 +240,7 @@ pub fn assess_bounded(
 ) -> Option<(f64, f64)> {
     let n = plan.uavs.len();
     let spso_preset = world.spec.objective.preset == ObjectivePreset::Spso;
+    scratch.own_terms.serve(world.id());
     scratch.timed.fill(world, plan);
     let flies_arcs = world.flies_arcs();
     scratch.reports.resize_with(n, UavReport::default);

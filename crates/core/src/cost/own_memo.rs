@@ -5,9 +5,9 @@
 //! of n between evaluations on the same buffers, yet SPSO's terms, the turn, climb and
 //! turning-radius checks, the arcs' threat check and the terrain clearance of the n - 1
 //! others were computed again each time. They are pure functions of the UAV's waypoints
-//! and turning radius, given the world (one [`super::Scratch`] serves one world, as the
-//! flown-arc cache of [`crate::timing::TimedPlan::fill_flown`] already assumes), and the
-//! amounts of their violations do not depend on time (time only places a violation, in a
+//! and turning radius, given the world (the memo is keyed on the world's identity too:
+//! thread-local buffers serve every problem evaluated on their thread), and the amounts
+//! of their violations do not depend on time (time only places a violation, in a
 //! report). So a UAV whose waypoints are bit for bit those of the last evaluation takes
 //! these terms from the memo, and their violations are added again in the order they were
 //! found, which gives the violation sums the same bits as computing them afresh.
@@ -18,9 +18,11 @@ use glam::DVec3;
 use super::WaypointTerms;
 use crate::feasibility::{Deferred, ViolationSink};
 
-/// Per UAV, its memoised terms.
+/// Per UAV, its memoised terms, in the world they were computed in.
 #[derive(Debug, Clone, Default)]
 pub(super) struct OwnMemo {
+    /// [`crate::world::World::id`] of the world the entries belong to.
+    world: Option<u64>,
     entries: Vec<Entry>,
 }
 
@@ -60,6 +62,15 @@ impl Entry {
 }
 
 impl OwnMemo {
+    /// Serves world `id` from now on: the entries of another are forgotten (thread-local
+    /// buffers serve every problem evaluated on their thread).
+    pub(super) fn serve(&mut self, id: u64) {
+        if self.world != Some(id) {
+            self.world = Some(id);
+            self.entries.clear();
+        }
+    }
+
     /// UAV `u`'s terms on `waypoints` (turning radius `radius`): from the memo, its
     /// violations added to `sink` again, or from `compute`, which adds them to the sink it
     /// is given. Without the memo when `sink` keeps the list or `memoise` is false.

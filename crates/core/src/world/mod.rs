@@ -72,9 +72,44 @@ pub struct World {
     pub ground_nodes: Vec<GroundNode>,
     /// Goal [x, y, z_agl].
     pub goal: DVec3,
+    /// Which built world this is, for memos of what depends on it.
+    id: WorldId,
+}
+
+/// Tells built worlds apart: evaluation buffers keep results that depend on the world (a
+/// UAV's own terms, `crate::cost`) and must not serve them to another. Each world gets a
+/// fresh one when built *and when cloned*, since a clone is what one edits (a world is not
+/// to be edited in place once evaluated).
+#[derive(Debug, PartialEq, Eq)]
+pub struct WorldId(u64);
+
+impl WorldId {
+    fn fresh() -> Self {
+        static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+        Self(NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed))
+    }
+
+    /// The number, unique among the worlds of this process.
+    #[must_use]
+    pub fn get(&self) -> u64 {
+        self.0
+    }
+}
+
+impl Clone for WorldId {
+    /// A fresh identity: the clone may be edited, and memos of the original must not serve it.
+    fn clone(&self) -> Self {
+        Self::fresh()
+    }
 }
 
 impl World {
+    /// This world's identity (fresh for each world built or cloned).
+    #[must_use]
+    pub fn id(&self) -> u64 {
+        self.id.get()
+    }
+
     /// Validates `spec` and builds the world on `terrain`.
     pub fn new(spec: ScenarioSpec, terrain: Terrain) -> Result<Self, WorldError> {
         spec.validate()?;
@@ -155,6 +190,7 @@ impl World {
             terrain,
             channel,
             ground_nodes,
+            id: WorldId::fresh(),
         })
     }
 
