@@ -428,24 +428,8 @@ fn parameters_take_the_papers_symbols() {
 fn more_threads_than_runs_is_no_hang_and_absurd_counts_are_refused() {
     let dir = tempfile::tempdir().unwrap();
     let bench = |threads: &str, out: &str| {
-        swarmplan()
-            .args([
-                "bench",
-                "--scenarios",
-                "tiny",
-                "--methods",
-                "spso",
-                "--runs",
-                "2",
-            ])
-            .args([
-                "--iterations",
-                "2",
-                "--population",
-                "4",
-                "--threads",
-                threads,
-            ])
+        tiny_bench("spso", "2")
+            .args(["--threads", threads])
             .arg("--out")
             .arg(dir.path().join(out))
             .timeout(Duration::from_secs(60))
@@ -457,6 +441,15 @@ fn more_threads_than_runs_is_no_hang_and_absurd_counts_are_refused() {
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("--threads") && err.contains("100000"), "{err}");
+}
+
+/// A bench of `method` on `tiny`, `runs` runs of 2 iterations of 4 particles: seconds of
+/// work; the caller adds the rest (`--out`, ...).
+fn tiny_bench(method: &str, runs: &str) -> assert_cmd::Command {
+    let mut c = swarmplan();
+    c.args(["bench", "--scenarios", "tiny", "--methods", method])
+        .args(["--runs", runs, "--iterations", "2", "--population", "4"]);
+    c
 }
 
 /// `plan --terrain` on a kept TIFF reproducer fails as bad input (status 2) saying `why`,
@@ -648,19 +641,7 @@ fn aggregate_and_export_check_their_out_folder_first() {
     std::fs::write(&file, "#!/bin/sh\n").unwrap();
     let shard = dir.path().join("b");
     let b = shard.to_str().unwrap();
-    swarmplan()
-        .args([
-            "bench",
-            "--scenarios",
-            "tiny",
-            "--methods",
-            "pso",
-            "--runs",
-            "1",
-        ])
-        .args(["--iterations", "2", "--population", "4", "--out", b])
-        .assert()
-        .success();
+    tiny_bench("pso", "1").args(["--out", b]).assert().success();
     let summary = std::fs::read_to_string(shard.join("summary.md")).unwrap();
     let f = file.to_str().unwrap();
     fails_with(&["aggregate", b, "--out", f], 2, &["r.sh: is a file"]);
@@ -739,18 +720,7 @@ fn folders_of_records_without_a_summary_say_which_command_completes_them() {
     let dir = tempfile::tempdir().unwrap();
     let folder = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
     let bench = |extra: &[&str], out: &str| {
-        swarmplan()
-            .args([
-                "bench",
-                "--scenarios",
-                "tiny",
-                "--methods",
-                "pso",
-                "--runs",
-                "2",
-                "--evaluations",
-                "200",
-            ])
+        tiny_bench("pso", "2")
             .args(extra)
             .args(["--out", out])
             .assert()
