@@ -19,7 +19,7 @@ use thiserror::Error;
 
 use crate::matrix::{ExperimentSpec, MatrixError, RunKey, Shard};
 use crate::record::RunRecord;
-use crate::store::{check_fingerprints, RecordWriter, StoreError};
+use crate::store::{check_fingerprints, FolderLock, RecordWriter, StoreError};
 
 #[derive(Debug, Error)]
 pub enum RunnerError {
@@ -60,6 +60,9 @@ pub struct RunnerOutcome {
     pub executed: usize,
     /// Runs of this shard found already recorded.
     pub skipped: usize,
+    /// The folder's lock, held while this outcome lives (the caller writes the summary
+    /// and figures under it).
+    pub lock: FolderLock,
 }
 
 /// Runs this shard's pending runs into `dir`, calling `start(pending)` once and
@@ -168,6 +171,7 @@ pub fn run_experiment(
         records,
         executed,
         skipped,
+        lock: writer.lock(),
     })
 }
 

@@ -207,8 +207,17 @@ pub fn describe(k: &RunKey) -> String {
 pub struct RecordWriter {
     path: PathBuf,
     file: Mutex<File>,
-    /// The folder's lock, held while this writer lives (released when the file closes).
-    _lock: Option<File>,
+    /// The folder's lock, held while this writer or a copy of it lives.
+    lock: FolderLock,
+}
+
+/// A held lock of a bench folder ([`LOCK_FILE`]), released when the last copy is dropped:
+/// the runner hands one to its caller, so the lock also covers the summary and figures
+/// written after the runs.
+#[derive(Debug, Clone, Default)]
+pub struct FolderLock {
+    /// The locked file (none where the file system cannot lock); held, never read.
+    _file: Option<std::sync::Arc<File>>,
 }
 
 /// The file a bench holds locked in its folder while it writes there.
@@ -217,7 +226,7 @@ pub const LOCK_FILE: &str = ".bench.lock";
 /// Takes `dir`'s lock: two benches appending to one `runs.jsonl` would each run what the
 /// other runs, and the duplicates make the folder unusable. `None` where the file system
 /// cannot lock (the bench goes on unguarded there rather than refuse to run).
-fn lock(dir: &Path) -> Result<Option<File>, StoreError> {
+fn lock(dir: &Path) -> Result<FolderLock, StoreError> {
     let path = dir.join(LOCK_FILE);
     let file = OpenOptions::new()
         .create(true)
@@ -226,15 +235,23 @@ fn lock(dir: &Path) -> Result<Option<File>, StoreError> {
         .open(&path)
         .map_err(io(&path))?;
     match file.try_lock() {
-        Ok(()) => Ok(Some(file)),
+        Ok(()) => Ok(FolderLock {
+            _file: Some(std::sync::Arc::new(file)),
+        }),
         Err(std::fs::TryLockError::WouldBlock) => Err(StoreError::Busy {
             dir: dir.to_path_buf(),
         }),
-        Err(std::fs::TryLockError::Error(_)) => Ok(None),
+        Err(std::fs::TryLockError::Error(_)) => Ok(FolderLock::default()),
     }
 }
 
 impl RecordWriter {
+    /// A copy of the folder's lock, which keeps it held after this writer is dropped.
+    #[must_use]
+    pub fn lock(&self) -> FolderLock {
+        self.lock.clone()
+    }
+
     /// Prepares `dir` for `spec`: writes `experiment.json` or checks it matches, and with
     /// `resume` returns the runs already recorded. Without `resume` the folder must not hold
     /// records yet.
@@ -277,7 +294,7 @@ impl RecordWriter {
             Self {
                 path,
                 file: Mutex::new(file),
-                _lock: lock,
+                lock,
             },
             existing,
         ))
@@ -379,7 +396,15 @@ mod tests {
             "{:?}",
             second.err()
         );
+        // A copy of the lock outlives the writer (the runner's caller holds it while it
+        // writes the summary).
+        let kept = first.lock();
         drop(first);
+        assert!(matches!(
+            RecordWriter::open(dir.path(), &spec, true),
+            Err(StoreError::Busy { .. })
+        ));
+        drop(kept);
         assert!(RecordWriter::open(dir.path(), &spec, true).is_ok());
     }
 }

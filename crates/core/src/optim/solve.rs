@@ -199,9 +199,6 @@ pub fn solve_watching(
         if budget.until_feasible && optimizer.best().1.feasible() {
             break Termination::Feasible;
         }
-        if budget.cancel.requested() {
-            break Termination::Cancelled;
-        }
         if budget
             .time_limit_ms
             .is_some_and(|ms| started.elapsed().as_millis() >= u128::from(ms))
@@ -216,6 +213,10 @@ pub fn solve_watching(
         }
         if ev.remaining() == Some(0) {
             break Termination::MaxEvaluations;
+        }
+        // Last: a run whose budget is spent ends as it would have, cancelled or not.
+        if budget.cancel.requested() {
+            break Termination::Cancelled;
         }
         let before = ev.count();
         ev.set_iteration(iteration as u64, max_steps);
