@@ -57,7 +57,8 @@ pub struct GenerateRequest {
 pub const FREE_MAX_DELAY: f64 = 0.3;
 
 impl GenerateRequest {
-    /// The scenario's name, `gen-sK-uN-tM[-wW][-shared][-pace][-delay]`, from which [`Self::from_name`]
+    /// The scenario's name, `gen-sK-uN-tM[-wW][-shared][-pace][-delay]` (and `-on-DEM`, the
+    /// DEM file's stem, for a request on a DEM), from which [`Self::from_name`]
     /// gets the request back: a generated scenario can be named wherever a built-in one can
     /// (`plan --scenario gen-s3-u8-t12-w1`, `bench --scenarios`, suites), and a record's
     /// scenario name is enough to rebuild it. Only procedural-terrain requests have names
@@ -76,6 +77,25 @@ impl GenerateRequest {
         }
         if self.free_delays {
             name.push_str("-delay");
+        }
+        if let Some(path) = &self.terrain {
+            // Tells it from the procedural scenario of the same numbers in titles and
+            // records; such a name rebuilds nothing (`from_name` takes no `-on-`).
+            let stem = Path::new(path)
+                .file_stem()
+                .map_or_else(|| "dem".into(), |s| s.to_string_lossy().into_owned());
+            let stem: String = stem
+                .chars()
+                .map(|c| {
+                    if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                        c
+                    } else {
+                        '_'
+                    }
+                })
+                .collect();
+            name.push_str("-on-");
+            name.push_str(&stem);
         }
         name
     }
@@ -609,6 +629,10 @@ mod tests {
         });
         for seed in 1..5 {
             let s = on_dem(&dem, seed, 12);
+            // Named apart from the procedural scenario of the same numbers, and no name of
+            // one that its name would rebuild.
+            assert_eq!(s.name, format!("gen-s{seed}-u12-t6-on-flat"));
+            assert!(GenerateRequest::from_name(&s.name).is_none());
             assert_eq!(s.map.x, [0.0, 1200.0]);
             assert_eq!(s.map.y, [0.0, 800.0]);
             for p in s.uavs.iter().map(|u| u.start).chain([s.goal.position]) {
