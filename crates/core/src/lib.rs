@@ -21,6 +21,7 @@ pub mod method;
 pub mod optim;
 pub mod plan;
 pub mod planning;
+mod points_key;
 pub mod problem;
 pub mod rng;
 pub mod run;

@@ -28,6 +28,7 @@
 use glam::DVec3;
 
 use crate::plan::{Path, Plan};
+use crate::points_key::PointsKey;
 use crate::world::spec::{TimingPolicy, MAX_DELAY_LIMIT};
 use crate::world::World;
 
@@ -211,26 +212,19 @@ impl Default for TimedPlan {
 #[derive(Debug, Clone, Default)]
 struct FlownSource {
     radius: u64,
-    abs: Vec<[u64; 3]>,
+    abs: PointsKey,
     built: bool,
 }
 
 impl FlownSource {
-    fn bits(v: DVec3) -> [u64; 3] {
-        [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()]
-    }
-
     fn is(&self, radius: f64, abs: &[DVec3]) -> bool {
-        self.radius == radius.to_bits()
-            && self.abs.len() == abs.len()
-            && self.abs.iter().zip(abs).all(|(a, b)| *a == Self::bits(*b))
+        self.radius == radius.to_bits() && self.abs.matches(abs)
     }
 
     /// New inputs: their tangents are to be computed, their geometry built.
     fn set(&mut self, radius: f64, abs: &[DVec3]) {
         self.radius = radius.to_bits();
-        self.abs.clear();
-        self.abs.extend(abs.iter().map(|v| Self::bits(*v)));
+        self.abs.set(abs);
         self.built = false;
     }
 }

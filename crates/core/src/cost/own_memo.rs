@@ -17,6 +17,7 @@ use glam::DVec3;
 
 use super::WaypointTerms;
 use crate::feasibility::{Deferred, ViolationSink};
+use crate::points_key::PointsKey;
 
 /// Per UAV, its memoised terms, in the world they were computed in.
 #[derive(Debug, Clone, Default)]
@@ -29,7 +30,7 @@ pub(super) struct OwnMemo {
 /// What one UAV's waypoints decided, and the waypoints and radius they were.
 #[derive(Debug, Clone, Default)]
 struct Entry {
-    waypoints: Vec<[u64; 3]>,
+    waypoints: PointsKey,
     radius: u64,
     /// Its terms on the waypoints, if computed for these waypoints.
     on_waypoints: Option<WaypointTerms>,
@@ -43,18 +44,9 @@ struct Entry {
 impl Entry {
     /// Whether this entry is of `waypoints` and `radius`; if not, it is made theirs, empty.
     fn bind(&mut self, waypoints: &[DVec3], radius: f64) {
-        let bits = |v: &DVec3| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
-        let same = self.radius == radius.to_bits()
-            && self.waypoints.len() == waypoints.len()
-            && self
-                .waypoints
-                .iter()
-                .zip(waypoints)
-                .all(|(a, b)| *a == bits(b));
-        if !same {
+        if self.radius != radius.to_bits() || !self.waypoints.matches(waypoints) {
             self.radius = radius.to_bits();
-            self.waypoints.clear();
-            self.waypoints.extend(waypoints.iter().map(bits));
+            self.waypoints.set(waypoints);
             self.on_waypoints = None;
             self.flown = None;
         }

@@ -23,6 +23,7 @@ use glam::DVec3;
 
 use crate::feasibility::{At, ViolationKind, ViolationSink};
 use crate::plan::Plan;
+use crate::points_key::{same_points, PointsKey};
 use crate::timing::{TimedPath, TimedPlan};
 use crate::world::spec::TimingPolicy;
 use crate::world::threat::Threat;
@@ -57,7 +58,7 @@ pub struct ProximityScratch {
 /// One UAV's waypoint-to-threat part of Eq. 8 and what it was computed from.
 #[derive(Debug, Clone, Default)]
 struct ThreatShare {
-    waypoints: Vec<DVec3>,
+    waypoints: PointsKey,
     /// UAV size and epsilon, as bits.
     settings: [u64; 2],
     /// The threats' (x, y, r), as bits.
@@ -69,15 +70,9 @@ impl ThreatShare {
     /// The share of a UAV of `size` at `waypoints`, recomputed only if something it
     /// depends on differs bit for bit from the last call.
     fn of(&mut self, waypoints: &[DVec3], size: f64, eps: f64, threats: &[Threat]) -> f64 {
-        let bits = |v: &DVec3| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
         let settings = [size.to_bits(), eps.to_bits()];
         let same = self.settings == settings
-            && self.waypoints.len() == waypoints.len()
-            && self
-                .waypoints
-                .iter()
-                .zip(waypoints)
-                .all(|(a, b)| bits(a) == bits(b))
+            && self.waypoints.matches(waypoints)
             && self.threats.len() == threats.len()
             && self
                 .threats
@@ -86,8 +81,7 @@ impl ThreatShare {
                 .all(|(a, t)| *a == [t.x.to_bits(), t.y.to_bits(), t.r.to_bits()]);
         if !same {
             self.settings = settings;
-            self.waypoints.clear();
-            self.waypoints.extend_from_slice(waypoints);
+            self.waypoints.set(waypoints);
             self.threats.clear();
             self.threats.extend(
                 threats
@@ -235,13 +229,7 @@ impl Motion {
 
     /// Bit for bit the same motion (so every pair result it is in stands).
     fn same_as(&self, other: &Self) -> bool {
-        let bits = |v: &DVec3| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
-        self.abs.len() == other.abs.len()
-            && self
-                .abs
-                .iter()
-                .zip(&other.abs)
-                .all(|(a, b)| bits(a) == bits(b))
+        same_points(&self.abs, &other.abs)
             && self
                 .times
                 .iter()
