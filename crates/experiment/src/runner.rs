@@ -6,10 +6,9 @@
 
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
-
-use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+use rayon::prelude::*;
 use swarmplan_core::optim::cancel::Cancel;
 use swarmplan_core::optim::Termination;
 use swarmplan_core::run::{run, RunRequest};

@@ -224,8 +224,8 @@ pub struct FolderLock {
 pub const LOCK_FILE: &str = ".bench.lock";
 
 /// Takes `dir`'s lock: two benches appending to one `runs.jsonl` would each run what the
-/// other runs, and the duplicates make the folder unusable. `None` where the file system
-/// cannot lock (the bench goes on unguarded there rather than refuse to run).
+/// other runs, and the duplicates make the folder unusable. Where the file system cannot
+/// lock, an empty lock (the bench goes on unguarded there rather than refuse to run).
 fn lock(dir: &Path) -> Result<FolderLock, StoreError> {
     let path = dir.join(LOCK_FILE);
     let file = OpenOptions::new()

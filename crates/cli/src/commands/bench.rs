@@ -197,18 +197,19 @@ fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
 /// (as a scenario file's DEM is to the scenario), made relative to the current folder.
 /// A file's path is the run's identity (its seeds, `experiment.json`), so it is spelt one
 /// way however the experiment file was named (`e.toml`, `./e.toml`, its absolute path):
-/// relative to the current folder, without `.` or needless `..`.
+/// from the canonical paths of the file and the current folder (a file that does not exist
+/// keeps the joined path, and its load says so).
 fn relative_to(mut spec: ExperimentSpec, dir: &Path) -> ExperimentSpec {
-    let cwd = std::env::current_dir().ok();
+    let cwd = std::env::current_dir().and_then(std::fs::canonicalize).ok();
     let resolve = |file: &str| {
         if Path::new(file).is_absolute() {
             return file.to_string();
         }
-        let joined = tidy(&dir.join(file));
-        let from_cwd = cwd.as_deref().and_then(|cwd| {
-            let absolute = tidy(&cwd.join(&joined));
-            pathdiff::diff_paths(absolute, tidy(cwd))
-        });
+        let joined = dir.join(file);
+        let from_cwd = std::fs::canonicalize(&joined)
+            .ok()
+            .zip(cwd.as_deref())
+            .and_then(|(file, cwd)| pathdiff::diff_paths(file, cwd));
         from_cwd.unwrap_or(joined).display().to_string()
     };
     for s in &mut spec.scenarios {
@@ -220,25 +221,6 @@ fn relative_to(mut spec: ExperimentSpec, dir: &Path) -> ExperimentSpec {
         *t = resolve(t);
     }
     spec
-}
-
-/// `path` without `.` components and with each `..` taking back the name before it, where
-/// there is one (lexically: symbolic links are not followed).
-fn tidy(path: &Path) -> PathBuf {
-    use std::path::Component;
-    let mut out = PathBuf::new();
-    for c in path.components() {
-        match c {
-            Component::CurDir => {}
-            Component::ParentDir
-                if matches!(out.components().next_back(), Some(Component::Normal(_))) =>
-            {
-                out.pop();
-            }
-            other => out.push(other),
-        }
-    }
-    out
 }
 
 /// The budget of an experiment in words, e.g. `equal budgets: 38700 evaluations per run`.
