@@ -47,6 +47,10 @@ pub struct PlanningProblem<'w> {
 /// turn two converging approaches apart at the edge of the landing zone.
 pub const NUDGE_SEPARATIONS: f64 = 2.0;
 
+/// Horizontal offset of a shifted copy ([`Problem::shifted_copy`]), in separation
+/// distances, drawn uniformly from this range.
+pub const SHIFT_SEPARATIONS: [f64; 2] = [1.5, 3.0];
+
 /// Slots of [`Problem::evaluate_cost_bounded_in`] with buffers of their own (per thread);
 /// higher slots share the thread's common buffers. ABC's default has 25 food sources.
 pub const BUFFER_SLOTS: usize = 64;
@@ -320,6 +324,39 @@ impl Problem for PlanningProblem<'_> {
         w.x = (w.x + NUDGE_SEPARATIONS * sep * dx).clamp(f.x[0], f.x[1]);
         w.y = (w.y + NUDGE_SEPARATIONS * sep * dy).clamp(f.y[0], f.y[1]);
         w.z = (w.z + sep * dz).clamp(f.z[0], f.z[1]);
+        let encoded = self.encode(&plan);
+        out.copy_from_slice(&encoded[block * size..(block + 1) * size]);
+        true
+    }
+
+    fn shifted_copy(
+        &self,
+        x: &[f64],
+        block: usize,
+        donor: usize,
+        rng: &mut Rng,
+        out: &mut [f64],
+    ) -> bool {
+        let size = self.block_size();
+        let f = &self.frame;
+        let uavs = self.world.uav_count();
+        if f.n == 0 || block >= uavs || donor >= uavs || out.len() != size {
+            return false;
+        }
+        let mut plan = self.encoding.decode(x);
+        let sep = self.world.spec.timing.separation.max(1.0);
+        let angle = rand::Rng::random::<f64>(rng) * std::f64::consts::TAU;
+        let reach = sep
+            * (SHIFT_SEPARATIONS[0]
+                + (SHIFT_SEPARATIONS[1] - SHIFT_SEPARATIONS[0]) * rand::Rng::random::<f64>(rng));
+        let dz: f64 = StandardNormal.sample(rng);
+        let (ox, oy, oz) = (reach * angle.cos(), reach * angle.sin(), sep * dz);
+        let source: Vec<_> = plan.uavs[donor].waypoints[1..=f.n].to_vec();
+        for (w, s) in plan.uavs[block].waypoints[1..=f.n].iter_mut().zip(source) {
+            w.x = (s.x + ox).clamp(f.x[0], f.x[1]);
+            w.y = (s.y + oy).clamp(f.y[0], f.y[1]);
+            w.z = (s.z + oz).clamp(f.z[0], f.z[1]);
+        }
         let encoded = self.encode(&plan);
         out.copy_from_slice(&encoded[block * size..(block + 1) * size]);
         true

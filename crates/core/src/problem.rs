@@ -166,6 +166,22 @@ pub trait Problem: Sync {
         false
     }
 
+    /// Block `donor`'s path of `x` made block `block`'s, shifted by a random offset of a
+    /// few separation distances (every free waypoint by the same offset), written into `out`;
+    /// false, writing nothing, when the problem has no such move (the default). Not an
+    /// evaluation; it draws only from `rng`.
+    fn shifted_copy(
+        &self,
+        x: &[f64],
+        block: usize,
+        donor: usize,
+        rng: &mut Rng,
+        out: &mut [f64],
+    ) -> bool {
+        let _ = (x, block, donor, rng, out);
+        false
+    }
+
     /// [`Problem::evaluate`], also writing into `by_block` each block's share of the
     /// violation (a planning problem: each UAV's, a pair's violation counting for both), so
     /// a decomposing optimizer can search where the violations are. The shares need not sum

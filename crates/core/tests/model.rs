@@ -900,6 +900,56 @@ fn a_nudge_moves_one_free_waypoint_of_one_uav_and_keeps_the_rest() {
 }
 
 #[test]
+fn a_shifted_copy_flies_the_donors_path_a_few_separations_aside() {
+    use swarmplan_core::encoding::{EncodingKind, InitKind};
+    use swarmplan_core::planning::{PlanningProblem, SHIFT_SEPARATIONS};
+    use swarmplan_core::problem::Problem;
+    let mut s = spec(&[[100.0, 100.0, 150.0], [140.0, 100.0, 150.0]]);
+    s.timing.max_delay = 0.2; // a block with a delay value too
+    let sep = s.timing.separation;
+    let w = World::new(s, flat()).unwrap();
+    let p = PlanningProblem::new(&w, EncodingKind::Spherical, InitKind::Line);
+    let mut rng = swarmplan_core::rng::rng_from_seed(5);
+    let size = p.block_size();
+    let mut x = vec![0.0; p.dimension()];
+    let mut rigid = 0;
+    for _ in 0..50 {
+        p.sample_initial(&mut rng, &mut x);
+        let mut block = vec![f64::NAN; size];
+        assert!(p.shifted_copy(&x, 1, 0, &mut rng, &mut block));
+        for (b, v) in block.iter().enumerate() {
+            let bound = p.bounds()[size + b];
+            assert!(
+                bound.lo <= *v && *v <= bound.hi,
+                "value {b} outside its bound"
+            );
+        }
+        let mut y = x.clone();
+        y[size..2 * size].copy_from_slice(&block);
+        let (before, after) = (p.decode(&x), p.decode(&y));
+        assert_eq!(before.uavs[0].waypoints, after.uavs[0].waypoints);
+        assert!((before.delay(1) - after.delay(1)).abs() < 1e-12);
+        let (own, copy) = (&before.uavs[1].waypoints, &after.uavs[1].waypoints);
+        let last = own.len() - 1;
+        assert!(copy[0].distance(own[0]) < 1e-9 && copy[last].distance(own[last]) < 1e-9);
+        // Every free waypoint is the donor's moved by one offset, unless a bound of the
+        // encoding (a segment's length, the heading sector) or the map clipped it.
+        let donor = &before.uavs[0].waypoints;
+        let offset = copy[1] - donor[1];
+        let same = (1..last).all(|k| (copy[k] - donor[k] - offset).length() < 1e-6);
+        let aside = offset.truncate().length() / sep;
+        if same {
+            rigid += 1;
+            assert!(
+                (SHIFT_SEPARATIONS[0] - 1e-9..=SHIFT_SEPARATIONS[1] + 1e-9).contains(&aside),
+                "{aside} separations aside"
+            );
+        }
+    }
+    assert!(rigid >= 25, "{rigid} of 50 copies kept the donor's shape");
+}
+
+#[test]
 fn the_ground_coverage_map_is_dead_behind_a_ridge_and_beyond_the_range() {
     use swarmplan_core::cost::coverage::{direct_ground_link, GroundCoverage};
     // A 500 m ridge across the map at x in [240, 260]; the station at x = 100, UGV0 at

@@ -51,6 +51,10 @@
 //! threat cluster. On the outside instances (docs/results.md, paired seeds) 33 of 80 runs
 //! were feasible with transplants against 24 without; the perturbation, the spread, the
 //! nudges and, where free, the departure delays then separate the copy from its donor.
+//! Once a round has passed without progress the transplant is a *shifted copy*
+//! (`shifted_copies`, [`Evaluator::shifted_copy`]): the donor's path moved as a whole a few
+//! separation distances aside, so that it flies beside its donor rather than on top of it
+//! (held out on the outside instances: 168 of 320 runs feasible against 146).
 //!
 //! **Nudges** (`nudges`). In the same visits, up to `nudges` of the perturbed particles are
 //! the problem's local move of the context's path ([`Evaluator::nudge`]): one free waypoint
@@ -156,6 +160,15 @@ pub struct CoopParams {
     /// is no transplant; 0: none, and no random draw for them). Measured in
     /// docs/results.md ("Nudges").
     pub nudges: usize,
+    /// Once a round has passed without progress (an infeasible context whose violation did
+    /// not drop by `restart_drop`), make the transplant a *shifted copy*
+    /// ([`Evaluator::shifted_copy`]): the donor's path moved as a whole, in a planning
+    /// problem by 1.5 to 3 separation distances sideways in a random direction and a
+    /// Gaussian of one in height. Under common arrival the copy and its donor are at the
+    /// same share of their routes at every instant, so they fly side by side about that
+    /// far apart, where a perturbed copy flies on top of its donor. Measured in
+    /// docs/results.md ("Shifted copies").
+    pub shifted_copies: bool,
 }
 
 impl CoopParams {
@@ -177,6 +190,7 @@ impl CoopParams {
         synchronous: true,
         transplant: true,
         nudges: 4,
+        shifted_copies: true,
     };
 
     pub fn validate(&self) -> Result<(), ParamsError> {
@@ -529,6 +543,8 @@ impl Cooperative {
             0
         };
         let first_nudge = last_perturbed + 1 - nudges;
+        // After a round without progress the transplant is a shifted copy.
+        let shift = self.params.shifted_copies && self.stale_rounds >= 1;
         let mut from = 1;
         while from < n {
             let to = (from + self.chunk()).min(n);
@@ -540,6 +556,14 @@ impl Cooperative {
                     && ev.nudge(&self.context, b, rng, &mut self.x[i * len..(i + 1) * len])
                 {
                     // The problem's local move of the context's block.
+                } else if i == n - 1
+                    && shift
+                    && donor.is_some_and(|d| {
+                        let out = &mut self.x[i * len..(i + 1) * len];
+                        ev.shifted_copy(&self.context, b, d, rng, out)
+                    })
+                {
+                    // The transplant as a shifted copy of the donor's path.
                 } else {
                     // The last particle is the transplant when there is one; the centre
                     // of the others is the context's own block.
@@ -1090,6 +1114,78 @@ mod tests {
         assert!(
             two[3] >= 4 && two[3] % 2 == 0,
             "two per visit of block 3: {two:?}"
+        );
+    }
+
+    /// [`LastBlockViolated`]'s plateau, recording the shifted copies asked for as
+    /// (block, donor).
+    struct CountsShiftedCopies {
+        inner: LastBlockViolated,
+        asked: std::sync::Mutex<Vec<(usize, usize)>>,
+    }
+
+    impl Problem for CountsShiftedCopies {
+        fn bounds(&self) -> &[Bound] {
+            self.inner.bounds()
+        }
+        fn evaluate(&self, x: &[f64]) -> Evaluation {
+            self.inner.evaluate(x)
+        }
+        fn evaluate_blocks(&self, x: &[f64], by_block: &mut Vec<f64>) -> Evaluation {
+            self.inner.evaluate_blocks(x, by_block)
+        }
+        fn block_size(&self) -> usize {
+            3
+        }
+        fn shifted_copy(
+            &self,
+            x: &[f64],
+            block: usize,
+            donor: usize,
+            _: &mut Rng,
+            out: &mut [f64],
+        ) -> bool {
+            self.asked
+                .lock()
+                .expect("not poisoned")
+                .push((block, donor));
+            out.copy_from_slice(&x[3 * donor..3 * donor + 3]);
+            true
+        }
+    }
+
+    #[test]
+    fn shifted_copies_come_after_a_round_without_progress_for_the_violating_block() {
+        let asked = |shifted_copies: bool, evaluations: u64| {
+            let p = CountsShiftedCopies {
+                inner: LastBlockViolated {
+                    bounds: vec![Bound::new(-5.0, 5.0); 12],
+                    prev: std::sync::Mutex::new(vec![f64::NAN; 12]),
+                    visiting_last: 0.into(),
+                },
+                asked: std::sync::Mutex::new(Vec::new()),
+            };
+            let mut opt = Cooperative::new(CoopParams {
+                shifted_copies,
+                ..CoopParams::DEFAULT
+            });
+            let _ = solve(
+                &p,
+                &mut opt,
+                Budget::evaluations(evaluations),
+                &mut rng_from_seed(3),
+                &mut |_| {},
+            );
+            p.asked.into_inner().expect("not poisoned")
+        };
+        assert!(asked(false, 6000).is_empty());
+        // A round visits the four blocks, 100 evaluations a visit: none has ended yet.
+        assert!(asked(true, 300).is_empty());
+        let on = asked(true, 6000);
+        assert!(!on.is_empty());
+        assert!(
+            on.iter().all(|&(b, d)| b == 3 && d < 3),
+            "only the violating block, from the others: {on:?}"
         );
     }
 

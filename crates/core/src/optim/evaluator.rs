@@ -68,6 +68,19 @@ impl<'a> Evaluator<'a> {
         self.problem.nudge(x, block, rng, out)
     }
 
+    /// The problem's shifted copy of one block's path into another ([`Problem::shifted_copy`];
+    /// not an evaluation).
+    pub fn shifted_copy(
+        &self,
+        x: &[f64],
+        block: usize,
+        donor: usize,
+        rng: &mut Rng,
+        out: &mut [f64],
+    ) -> bool {
+        self.problem.shifted_copy(x, block, donor, rng, out)
+    }
+
     /// The bounds of the problem (borrowed from the problem, not from the evaluator, so an
     /// optimizer can hold them while it evaluates).
     #[must_use]
