@@ -81,6 +81,14 @@ fn scenarios_beyond_what_the_model_can_hold_are_refused_with_the_field() {
             &["uavs[0].max_climb_deg", "(0, 90]", "got 95"],
         ),
         (
+            "ground-node-utm.toml",
+            &[
+                "communication.ground_nodes[0] (`relay`).position",
+                "(566712, 8838247) is outside the map box",
+                "not geographic coordinates",
+            ],
+        ),
+        (
             "cell-larger-than-map.toml",
             &["terrain.procedural.cell", "at most half", "got 500"],
         ),
@@ -286,12 +294,26 @@ fn output_folders_are_checked_first_and_never_overwritten_silently() {
         first
     );
     assert!(dir.path().join("out-2/plan.json").exists());
-    // --force replaces it.
-    assert!(plan(&["--seed", "9", "--force"]).status.success());
+    // --force replaces it, and leaves none of the old plan's exports or figures to be taken
+    // for the new one's; a file of the user's own stays.
+    assert!(plan(&["--export", "qgc,kml", "--origin", "1,1", "--force"])
+        .status
+        .success());
+    assert!(out.join("uav0.plan").exists() && out.join("mission.kml").exists());
+    std::fs::write(out.join("top_view.png"), "an old figure").unwrap();
+    std::fs::write(out.join("notes.txt"), "mine").unwrap();
+    let replaced = plan(&["--seed", "9", "--force"]);
+    assert!(replaced.status.success());
+    let err = String::from_utf8_lossy(&replaced.stderr);
+    assert!(err.contains("--force: removed the"), "{err}");
     assert_ne!(
         std::fs::read_to_string(out.join("plan.json")).unwrap(),
         first
     );
+    for gone in ["uav0.plan", "uav1.plan", "mission.kml", "top_view.png"] {
+        assert!(!out.join(gone).exists(), "{gone} left from the old plan");
+    }
+    assert!(out.join("notes.txt").exists() && out.join("run.json").exists());
     // No temporary file is left behind.
     let leftovers: Vec<_> = std::fs::read_dir(&out)
         .unwrap()

@@ -5,7 +5,9 @@
 //! folder first: a file or an unwritable place is an error (exit 2) before planning; a
 //! folder that already holds a plan is kept, and the new plan goes to the first free
 //! numbered sibling (`out-2`, `out-3`, ...), said on stderr, unless `--force` asks to
-//! replace it. Plan and bench folders are never mixed: `plan` refuses a folder with
+//! replace it; then every file the old plan's run wrote (records, figures, exports, the
+//! report) is removed first, so that no old figure or mission file is taken for the new
+//! plan's, and nothing else in the folder is touched. Plan and bench folders are never mixed: `plan` refuses a folder with
 //! `runs.jsonl`, `bench` one with `plan.json`.
 
 use std::path::{Path, PathBuf};
@@ -50,10 +52,50 @@ pub fn plan_folder(out: &Path, force: bool) -> Result<PathBuf> {
         );
         next
     } else {
+        if force && out.is_dir() && holds(out, "plan.json") {
+            clear_previous_plan(out)?;
+        }
         out.to_path_buf()
     };
     ensure_writable(&chosen, "--out")?;
     Ok(chosen)
+}
+
+/// Whether `name` is a file that `plan` (or `report` on its folder) writes.
+fn written_by_a_plan(name: &str) -> bool {
+    let figure = name
+        .strip_suffix(".png")
+        .or_else(|| name.strip_suffix(".svg"))
+        .is_some_and(|stem| super::plot::PLAN_FIGURES.contains(&stem));
+    figure
+        || matches!(
+            name,
+            "plan.json" | "convergence.csv" | "run.json" | "scenario.toml" | "report.html"
+        )
+        || swarmplan_io::export::is_mission_file(name)
+}
+
+/// Removes the files of the plan `dir` holds (`--force`), saying how many.
+fn clear_previous_plan(dir: &Path) -> Result<()> {
+    let entries =
+        std::fs::read_dir(dir).with_context(|| format!("--out {}: cannot list", dir.display()))?;
+    let mut removed = 0;
+    for entry in entries {
+        let entry = entry.with_context(|| format!("--out {}: cannot list", dir.display()))?;
+        let name = entry.file_name();
+        let is_file = entry.file_type().is_ok_and(|t| t.is_file());
+        if is_file && name.to_str().is_some_and(written_by_a_plan) {
+            let path = entry.path();
+            std::fs::remove_file(&path)
+                .with_context(|| format!("--force: cannot remove {}", path.display()))?;
+            removed += 1;
+        }
+    }
+    eprintln!(
+        "--force: removed the {removed} files of the plan {} held",
+        dir.display()
+    );
+    Ok(())
 }
 
 /// Refuses a bench into a plan folder.

@@ -21,6 +21,9 @@ pub struct PlotArgs {
     pub dir: PathBuf,
 }
 
+/// The stems of the figures of one plan (each written as .png and .svg).
+pub const PLAN_FIGURES: [&str; 4] = ["top_view", "view_3d", "convergence", "comm_timeline"];
+
 /// The figures of one plan; `title` names scenario, algorithm and seed.
 pub fn plan_figures(
     dir: &Path,
@@ -36,7 +39,7 @@ pub fn plan_figures(
     let per_uav = (!per_uav.is_empty()).then_some(per_uav);
     swarmplan_plot::convergence_run(trace, per_uav, title, stem("convergence"))?;
     swarmplan_plot::comm_timeline(world, plan, title, stem("comm_timeline"))?;
-    Ok(["top_view", "view_3d", "convergence", "comm_timeline"]
+    Ok(PLAN_FIGURES
         .iter()
         .map(|n| stem(n).with_extension("png"))
         .collect())

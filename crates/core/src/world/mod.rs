@@ -60,6 +60,19 @@ pub enum WorldError {
         bx: [f64; 2],
         by: [f64; 2],
     },
+    #[error("communication.ground_nodes[{}] (`{}`).position: ({}, {}) is outside the map box x {:?}, y {:?}; positions are metres in the map's frame, like the starts, not geographic coordinates", .0.index, .0.name, .0.x, .0.y, .0.bx, .0.by)]
+    GroundNodeOutside(Box<NodeOutside>),
+}
+
+/// An extra ground node placed outside the map box (boxed: the error stays small).
+#[derive(Debug)]
+pub struct NodeOutside {
+    pub index: usize,
+    pub name: String,
+    pub x: f64,
+    pub y: f64,
+    pub bx: [f64; 2],
+    pub by: [f64; 2],
 }
 
 /// A validated scenario with its terrain and channel.
@@ -144,6 +157,19 @@ impl World {
                 bx,
                 by,
             });
+        }
+        for (index, n) in spec.communication.ground_nodes.iter().enumerate() {
+            let [x, y] = n.position;
+            if !inside(x, y) {
+                return Err(WorldError::GroundNodeOutside(Box::new(NodeOutside {
+                    index,
+                    name: n.name.clone(),
+                    x,
+                    y,
+                    bx,
+                    by,
+                })));
+            }
         }
         let ground =
             |x: f64, y: f64, antenna: f64| DVec3::new(x, y, terrain.height(x, y) + antenna);

@@ -372,6 +372,22 @@ pub fn export_plan(
     write_mission(&mission, format, out_dir)
 }
 
+/// Whether `name` is one of the file names [`write_mission`] writes, so that a folder's
+/// old exports can be told from a user's own files when a plan is replaced.
+#[must_use]
+pub fn is_mission_file(name: &str) -> bool {
+    let numbered = |ext: &str| {
+        name.strip_prefix("uav")
+            .and_then(|rest| rest.strip_suffix(ext))
+            .is_some_and(|digits| !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()))
+    };
+    matches!(
+        name,
+        "mission.geojson" | "mission.kml" | "mission.csv" | "trajectory.csv"
+    ) || numbered(".plan")
+        || numbered(".waypoints")
+}
+
 /// Writes one format of an already converted mission into `out_dir`.
 pub fn write_mission(
     mission: &Mission,
