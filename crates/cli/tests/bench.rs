@@ -328,6 +328,18 @@ fn a_different_experiment_cannot_resume_in_the_same_folder() {
             predicate::str::contains("nothing to resume in")
                 .and(predicate::str::contains("the flags describe")),
         );
+    // Without flags, a mistyped folder is refused instead of starting the defaults.
+    Command::cargo_bin("swarmplan")
+        .unwrap()
+        .args(["bench", "--resume", "--out"])
+        .arg(dir.path().join("mistyped"))
+        .assert()
+        .code(2)
+        .stderr(
+            predicate::str::contains("nothing to resume there")
+                .and(predicate::str::contains("leave out --resume")),
+        );
+    assert!(!dir.path().join("mistyped").join("runs.jsonl").exists());
 }
 
 #[test]
@@ -679,4 +691,15 @@ fn an_experiment_files_scenario_files_are_relative_to_it() {
             .assert()
             .success();
     }
+    // Resumed from another folder, the recorded path is not found, and the message says why.
+    Command::cargo_bin("swarmplan")
+        .unwrap()
+        .current_dir(&folder)
+        .args(["bench", "--resume", "--out", "../out"])
+        .assert()
+        .code(2)
+        .stderr(
+            predicate::str::contains("names the file exp/mine.toml")
+                .and(predicate::str::contains("resume it from there")),
+        );
 }

@@ -99,6 +99,25 @@ fn defines_matrix(args: &BenchArgs) -> bool {
         || st.population.is_some()
 }
 
+/// Scenario and terrain files of a stored experiment are recorded relative to the folder
+/// the bench was started in (they are part of each run's identity); from another folder
+/// they are not found, which the load alone would say without the reason.
+fn recorded_files_reachable(spec: &ExperimentSpec, stored: &Path) -> Result<()> {
+    let files = spec
+        .scenarios
+        .iter()
+        .filter(|s| Path::new(s).extension().is_some_and(|e| e == "toml"))
+        .chain(spec.terrain.as_ref());
+    for f in files {
+        anyhow::ensure!(
+            Path::new(f).exists(),
+            "{}: names the file {f}, which is not found from here; the paths of a bench's files are recorded relative to the folder it was started in: resume it from there",
+            stored.display()
+        );
+    }
+    Ok(())
+}
+
 fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
     // `bench --resume --out DIR` alone continues the experiment the folder records; with
     // matrix flags, they must describe that same experiment (the runner compares).
@@ -113,18 +132,20 @@ fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
             stored.display()
         );
         spec.validate()?;
+        recorded_files_reachable(&spec, &stored)?;
         return Ok(spec);
     }
     if args.resume && !stored.is_file() {
-        // A new folder or a mistyped one: say what starts rather than resume nothing silently.
+        // A mistyped folder must not start the 2,800 runs of the defaults.
+        anyhow::ensure!(
+            defines_matrix(args),
+            "--resume --out {}: nothing to resume there (no experiment.json); check the folder's name, or leave out --resume to start the experiment of the defaults",
+            args.out.display()
+        );
+        // A new folder with the experiment in flags: say what starts.
         eprintln!(
-            "bench: nothing to resume in {} (no experiment.json); starting the experiment {}",
-            args.out.display(),
-            if defines_matrix(args) {
-                "the flags describe"
-            } else {
-                "of the defaults (the paper's Tables 4-5: 2,800 runs)"
-            }
+            "bench: nothing to resume in {} (no experiment.json); starting the experiment the flags describe",
+            args.out.display()
         );
     }
     let mut spec = match &args.experiment {
