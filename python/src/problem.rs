@@ -18,9 +18,9 @@ use swarmplan_core::problem::{Bound as VarBound, Problem as _};
 use swarmplan_core::rng::rng_from_seed;
 use swarmplan_core::world::World;
 use swarmplan_io::artifact::AssessmentReport;
-use swarmplan_io::plan_file::{plan_file, read_plan, Provenance};
+use swarmplan_io::plan_file::{plan_file, read_plan, PlanFileError, Provenance};
 
-use crate::errors::{bad, to_py};
+use crate::errors::{bad, message, to_py};
 use crate::{args, scenario};
 
 /// Most values `sample_initial` returns (1 GiB of f64): a larger request is refused, not
@@ -83,7 +83,14 @@ impl Problem {
         } else {
             Provenance::MustMatch
         };
-        read_plan(path, &self.world, provenance).map_err(to_py)
+        read_plan(path, &self.world, provenance).map_err(|e| match e {
+            // The CLI's advice, in this method's terms.
+            PlanFileError::Provenance { .. } => bad(match message(&e).rsplit_once("; ") {
+                Some((head, _)) => format!("{head}; allow_other_terrain=True assesses it anyway"),
+                None => message(&e),
+            }),
+            _ => to_py(e),
+        })
     }
 
     fn json<T: serde::Serialize>(value: &T) -> PyResult<String> {

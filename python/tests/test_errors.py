@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import swarmplan
-from conftest import ROOT, cli_error
+from conftest import ROOT, cli_error, run_cli
 
 TINY = (ROOT / "scenarios" / "tiny.toml").read_text()
 
@@ -111,3 +111,21 @@ def test_a_folder_with_records_is_named_in_python_terms(tmp_path):
     message = raised(swarmplan.bench, ["tiny"], ["gwo"], evaluations=100, out=out)
     assert "pass resume=True" in message and "another out" in message, message
     assert "x--out-b" in message and "--resume" not in message, message
+
+
+def test_a_bench_into_a_plan_folder_is_refused(cli, tmp_path):
+    out = tmp_path / "p"
+    run_cli(cli, "plan", "--scenario", "tiny", "--evaluations", "100", "--no-figures",
+            "--out", str(out))
+    message = raised(swarmplan.bench, ["tiny"], ["gwo"], evaluations=100, out=out)
+    assert "holds a plan (plan.json)" in message, message
+    assert not (out / "runs.jsonl").exists()
+
+
+def test_a_plan_of_another_scenario_names_the_keyword_that_allows_it(cli, tmp_path):
+    out = tmp_path / "p"
+    run_cli(cli, "plan", "--scenario", "tiny", "--evaluations", "100", "--no-figures",
+            "--out", str(out))
+    other = swarmplan.Problem("paper-case1")
+    message = raised(other.evaluate_plan, out / "plan.json")
+    assert "allow_other_terrain=True" in message and "--allow" not in message, message

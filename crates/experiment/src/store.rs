@@ -44,6 +44,8 @@ pub enum StoreError {
     Busy { dir: PathBuf },
     #[error("{dir}: already holds {count} run records; pass --resume to continue them, or choose another --out")]
     NotEmpty { dir: PathBuf, count: usize },
+    #[error("{dir}: holds a plan (plan.json); a bench needs its own folder")]
+    HoldsPlan { dir: PathBuf },
     #[error("{path}: run {key} appears twice")]
     Duplicate { path: PathBuf, key: String },
     #[error("{path}: run {key} is not a run of this folder's experiment ({why})")]
@@ -260,6 +262,11 @@ impl RecordWriter {
         spec: &ExperimentSpec,
         resume: bool,
     ) -> Result<(Self, Vec<RunRecord>), StoreError> {
+        if dir.join("plan.json").exists() {
+            return Err(StoreError::HoldsPlan {
+                dir: dir.to_path_buf(),
+            });
+        }
         std::fs::create_dir_all(dir).map_err(io(dir))?;
         let lock = lock(dir)?;
         let spec_path = dir.join(SPEC_FILE);
