@@ -467,11 +467,21 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         );
         if args.attempts > 1 {
             let evaluations: u64 = attempts.records.iter().map(|a| a.evaluations).sum();
+            let why = if a.feasible() {
+                "the first feasible one"
+            } else {
+                "none feasible: the one of least violation measure, then cost"
+            };
+            let repeat =
+                if result.outcome.termination == swarmplan_core::optim::Termination::TimeLimit {
+                    "stopped by the clock, so its seed alone does not repeat it".to_owned()
+                } else {
+                    format!("`--seed {}` repeats it alone", result.seed)
+                };
             println!(
-                "kept attempt {chosen} of {} (--attempts {}), {evaluations} evaluations in all; `--seed {}` repeats it alone",
+                "kept attempt {chosen} of {} (--attempts {}; {why}), {evaluations} evaluations in all; {repeat}",
                 attempts.records.len(),
                 args.attempts,
-                result.seed
             );
         }
         let timing = &world.spec.timing;
