@@ -654,6 +654,27 @@ fn an_experiment_file_with_a_budget_of_nothing_is_refused_naming_it() {
         );
         assert!(!out.exists(), "nothing is run or written");
     }
+    // A terrain the file names and that is not there is named as the file's field.
+    let file = dir.path().join("terrain.toml");
+    std::fs::write(
+        &file,
+        "master_seed = 1\nruns = 1\nscenarios = [\"tiny\"]\nmethods = [\"pso\"]\nterrain = \"nope.asc\"\n",
+    )
+    .unwrap();
+    let out = dir.path().join("o-terrain");
+    let err = fails_with(
+        &[
+            "bench",
+            "--experiment",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        2,
+        &["terrain.toml: terrain: no file", "nope.asc"],
+    );
+    assert!(!err.contains("--terrain"), "{err}");
+    assert!(!out.exists(), "nothing is run or written");
 }
 
 #[test]

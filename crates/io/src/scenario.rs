@@ -150,6 +150,18 @@ pub fn parse_spec(text: &str, origin: &str) -> Result<ScenarioSpec, ScenarioErro
         origin: origin.to_string(),
         source: e.into(),
     })?;
+    // Said here, naming the file, rather than by the first export that needs the frame.
+    if let Some(g) = &spec.geo {
+        let [lat, lon, alt] = g.origin;
+        crate::geo::check_tangent_origin(
+            crate::geo::ellipsoid::Geodetic::new(lat, lon, alt),
+            "geo.origin",
+        )
+        .map_err(|e| ScenarioError::Parse {
+            origin: origin.to_string(),
+            message: e.to_string(),
+        })?;
+    }
     Ok(spec)
 }
 

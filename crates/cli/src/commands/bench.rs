@@ -28,8 +28,9 @@ pub struct BenchArgs {
     #[arg(long, value_delimiter = ',', conflicts_with = "suite")]
     pub scenarios: Option<Vec<String>>,
     /// A named suite of scenarios instead of --scenarios: paper, outside (the 4 outside
-    /// benchmark instances), generated-8, generated-12, generated-20 (20 generated
-    /// instances each), generated (all 60).
+    /// benchmark instances), outside-delay (the same with departure delays free),
+    /// generated-8, generated-12, generated-20 (20 generated instances each), generated (all
+    /// 60).
     #[arg(long)]
     pub suite: Option<String>,
     /// Methods, comma-separated: presets or optimizer/encoding/init (default: the paper's
@@ -211,6 +212,14 @@ fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
         Some(p) => anyhow::anyhow!("{}: {e}", p.display()),
         None => e.into(),
     })?;
+    // The file's own terrain is named as its field, not as a --terrain flag never given.
+    if let (Some(p), None, Some(t)) = (&args.experiment, &args.terrain, &spec.terrain) {
+        anyhow::ensure!(
+            Path::new(t).is_file(),
+            "{}: terrain: no file {t} (the path is relative to the experiment file's folder)",
+            p.display()
+        );
+    }
     Ok(spec)
 }
 

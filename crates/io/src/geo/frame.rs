@@ -101,17 +101,24 @@ pub struct LocalFrame {
     altitude_offset: f64,
 }
 
+/// `origin` if a tangent frame can be made at it (a valid place, off the poles); `what`
+/// names it in the error (`origin`, or `geo.origin` for a scenario's).
+pub fn check_tangent_origin(origin: Geodetic, what: &str) -> Result<Geodetic, GeoError> {
+    let origin = check_geodetic(origin, what)?;
+    if origin.lat_deg.abs() > 89.999 {
+        return Err(GeoError::Pole {
+            what: what.into(),
+            value: origin.lat_deg,
+        });
+    }
+    Ok(origin)
+}
+
 impl LocalFrame {
     /// A tangent-plane frame at `origin`; `origin.alt_m` is the altitude AMSL of local
     /// height 0 (0 when terrain heights are metres above sea level).
     pub fn tangent(origin: Geodetic) -> Result<Self, GeoError> {
-        let origin = check_geodetic(origin, "origin")?;
-        if origin.lat_deg.abs() > 89.999 {
-            return Err(GeoError::Pole {
-                what: "origin".into(),
-                value: origin.lat_deg,
-            });
-        }
+        let origin = check_tangent_origin(origin, "origin")?;
         Ok(Self {
             kind: FrameKind::Tangent(TangentPlane::new(origin)),
             altitude_offset: origin.alt_m,

@@ -35,7 +35,7 @@ mod scenario;
 use thiserror::Error;
 
 pub use ellipsoid::{ecef_to_geodetic, geodetic_to_ecef, Ellipsoid, EnuFrame, Geodetic};
-pub use frame::{FrameKind, LocalFrame, TangentPlane};
+pub use frame::{check_tangent_origin, FrameKind, LocalFrame, TangentPlane};
 pub use new_scenario::{new_scenario, scenario_toml_with_origin, NewScenario, NewScenarioRequest};
 pub use projected::{Datum, GeographicCrs, UtmZone};
 pub use scenario::{

@@ -129,6 +129,9 @@ mod tests {
         for (bad, needle) in [
             ("[geo]\norigin = [1, 2]\n", "origin"),
             ("[geo]\norigin = [91, 2, 0]\n", "latitude"),
+            // Checked at load like the rest, not by the first export.
+            ("[geo]\norigin = [10, 20, 1e9]\n", "geo.origin: altitude"),
+            ("[geo]\norigin = [89.9999, 2, 0]\n", "within 89.999 degrees"),
             ("[geo]\norign = [1, 2, 0]\n", "orign"),
             ("[geo]\n", "origin"),
         ] {
