@@ -165,6 +165,10 @@ fn plans_that_cannot_be_evaluated_name_the_uav_and_waypoint() {
         ),
         ("plan-trailing.json", &["text after the plan object"]),
         (
+            "plan-array.json",
+            &["expected a JSON object", "found an array"],
+        ),
+        (
             "plan-other-scenario.json",
             &["made for scenario `paper-case1`", "--allow-other-terrain"],
         ),
@@ -692,6 +696,23 @@ fn aggregate_and_export_check_their_out_folder_first() {
         &["aggregate", b, "--out", b],
         2,
         &["is one of the folders aggregated"],
+    );
+    // Folders of two experiments: what differs is named.
+    let other = dir.path().join("b2");
+    tiny_bench("pso", "2")
+        .args(["--out", other.to_str().unwrap()])
+        .assert()
+        .success();
+    fails_with(
+        &[
+            "aggregate",
+            b,
+            other.to_str().unwrap(),
+            "--out",
+            dir.path().join("all").to_str().unwrap(),
+        ],
+        2,
+        &["a different experiment from", "1 runs in", "2 here"],
     );
     assert_eq!(
         std::fs::read_to_string(shard.join("summary.md")).unwrap(),

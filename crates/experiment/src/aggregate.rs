@@ -9,7 +9,8 @@ use thiserror::Error;
 use crate::matrix::ExperimentSpec;
 use crate::record::RunRecord;
 use crate::store::{
-    check_belong, describe, read_fingerprints, read_records, read_spec, StoreError, RUNS_FILE,
+    check_belong, describe, difference, read_fingerprints, read_records, read_spec, StoreError,
+    RUNS_FILE,
 };
 
 #[derive(Debug, Error)]
@@ -18,8 +19,12 @@ pub enum AggregateError {
     NoFolders,
     #[error(transparent)]
     Store(#[from] StoreError),
-    #[error("{other}: a different experiment from {first} (compare their experiment.json)")]
-    Different { first: PathBuf, other: PathBuf },
+    #[error("{other}: a different experiment from {first}: {what}")]
+    Different {
+        first: PathBuf,
+        other: PathBuf,
+        what: String,
+    },
     #[error("{other}: scenario `{scenario}` is not the one its runs in {first} were made on (compare their scenarios.json)")]
     ScenarioDiffers {
         first: PathBuf,
@@ -47,10 +52,12 @@ pub fn aggregate(dirs: &[PathBuf]) -> Result<(ExperimentSpec, Vec<RunRecord>), A
     let mut records: Vec<(RunRecord, &Path)> = Vec::new();
     let mut fingerprints: BTreeMap<String, (String, &PathBuf)> = BTreeMap::new();
     for d in dirs {
-        if read_spec(d)? != spec {
+        let theirs = read_spec(d)?;
+        if theirs != spec {
             return Err(AggregateError::Different {
                 first: first.clone(),
                 other: d.clone(),
+                what: difference(&spec, &theirs, [&format!("in {}", first.display()), "here"]),
             });
         }
         for (scenario, fp) in read_fingerprints(d)? {

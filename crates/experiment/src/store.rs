@@ -320,20 +320,23 @@ impl RecordWriter {
     }
 }
 
-/// Names the first field where two specs differ.
+/// Names the first field where two specs differ, as this folder's record (`there`) against
+/// the experiment asked for (`now`).
 fn diff(old: &ExperimentSpec, new: &ExperimentSpec) -> String {
+    difference(old, new, ["there", "now"])
+}
+
+/// Names the first field where specs `a` and `b` differ, each value followed by its label.
+pub fn difference(old: &ExperimentSpec, new: &ExperimentSpec, [a, b]: [&str; 2]) -> String {
     if old.master_seed != new.master_seed {
         format!(
-            "master seed {} there, {} now",
+            "master seed {} {a}, {} {b}",
             old.master_seed, new.master_seed
         )
     } else if old.runs != new.runs {
-        format!("{} runs there, {} now", old.runs, new.runs)
+        format!("{} runs {a}, {} {b}", old.runs, new.runs)
     } else if old.scenarios != new.scenarios {
-        format!(
-            "scenarios {:?} there, {:?} now",
-            old.scenarios, new.scenarios
-        )
+        format!("scenarios {:?} {a}, {:?} {b}", old.scenarios, new.scenarios)
     } else if old.methods != new.methods {
         let labels = |s: &ExperimentSpec| {
             s.methods
@@ -342,12 +345,12 @@ fn diff(old: &ExperimentSpec, new: &ExperimentSpec) -> String {
                 .collect::<Vec<_>>()
                 .join(",")
         };
-        format!("methods {} there, {} now", labels(old), labels(new))
+        format!("methods {} {a}, {} {b}", labels(old), labels(new))
     } else if old.budget != new.budget || old.budget_policy != new.budget_policy {
         "another budget".into()
     } else if old.profile != new.profile {
         format!(
-            "feasibility profile {} there, {} now",
+            "feasibility profile {} {a}, {} {b}",
             old.profile, new.profile
         )
     } else if old.terrain != new.terrain {
@@ -356,7 +359,7 @@ fn diff(old: &ExperimentSpec, new: &ExperimentSpec) -> String {
                 .clone()
                 .unwrap_or_else(|| "each scenario's own".into())
         };
-        format!("terrain {} there, {} now", terrain(old), terrain(new))
+        format!("terrain {} {a}, {} {b}", terrain(old), terrain(new))
     } else {
         "other parameter sets (--params, --population)".into()
     }

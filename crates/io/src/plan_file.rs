@@ -145,6 +145,14 @@ pub fn parse_plan(
         path: origin.to_string(),
         message,
     };
+    // serde reads a top-level array as the struct's fields in order, and would say
+    // "invalid length 0, expected struct PlanFile with 4 elements".
+    if text.trim_start().starts_with('[') {
+        return Err(parse_error(
+            "expected a JSON object (`{\"uavs\": [...], ...}`, as `plan` writes), found an array"
+                .into(),
+        ));
+    }
     let de = &mut serde_json::Deserializer::from_str(text);
     let file: PlanFile = serde_path_to_error::deserialize(&mut *de).map_err(|e| {
         let at = e.path().to_string();
