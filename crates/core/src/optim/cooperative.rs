@@ -1057,13 +1057,29 @@ mod tests {
         }
     }
 
-    /// [`LastBlockViolated`]'s plateau, counting the nudges asked for, per block.
-    struct CountsNudges {
+    /// [`LastBlockViolated`]'s plateau, counting the nudges asked for per block, and
+    /// recording the shifted copies asked for as (block, donor).
+    struct CountsMoves {
         inner: LastBlockViolated,
         asked: std::sync::Mutex<Vec<usize>>,
+        copies: std::sync::Mutex<Vec<(usize, usize)>>,
     }
 
-    impl Problem for CountsNudges {
+    impl CountsMoves {
+        fn new() -> Self {
+            Self {
+                inner: LastBlockViolated {
+                    bounds: vec![Bound::new(-5.0, 5.0); 12],
+                    prev: std::sync::Mutex::new(vec![f64::NAN; 12]),
+                    visiting_last: 0.into(),
+                },
+                asked: std::sync::Mutex::new(vec![0; 4]),
+                copies: std::sync::Mutex::new(Vec::new()),
+            }
+        }
+    }
+
+    impl Problem for CountsMoves {
         fn bounds(&self) -> &[Bound] {
             self.inner.bounds()
         }
@@ -1081,19 +1097,27 @@ mod tests {
             out.copy_from_slice(&x[3 * block..3 * block + 3]);
             true
         }
+        fn shifted_copy(
+            &self,
+            x: &[f64],
+            block: usize,
+            donor: usize,
+            _: &mut Rng,
+            out: &mut [f64],
+        ) -> bool {
+            self.copies
+                .lock()
+                .expect("not poisoned")
+                .push((block, donor));
+            out.copy_from_slice(&x[3 * donor..3 * donor + 3]);
+            true
+        }
     }
 
     #[test]
     fn nudges_go_to_the_violating_block_only_and_only_when_asked_for() {
         let asked = |nudges: usize| {
-            let p = CountsNudges {
-                inner: LastBlockViolated {
-                    bounds: vec![Bound::new(-5.0, 5.0); 12],
-                    prev: std::sync::Mutex::new(vec![f64::NAN; 12]),
-                    visiting_last: 0.into(),
-                },
-                asked: std::sync::Mutex::new(vec![0; 4]),
-            };
+            let p = CountsMoves::new();
             let mut opt = Cooperative::new(CoopParams {
                 nudges,
                 focus: 0.0,
@@ -1117,54 +1141,10 @@ mod tests {
         );
     }
 
-    /// [`LastBlockViolated`]'s plateau, recording the shifted copies asked for as
-    /// (block, donor).
-    struct CountsShiftedCopies {
-        inner: LastBlockViolated,
-        asked: std::sync::Mutex<Vec<(usize, usize)>>,
-    }
-
-    impl Problem for CountsShiftedCopies {
-        fn bounds(&self) -> &[Bound] {
-            self.inner.bounds()
-        }
-        fn evaluate(&self, x: &[f64]) -> Evaluation {
-            self.inner.evaluate(x)
-        }
-        fn evaluate_blocks(&self, x: &[f64], by_block: &mut Vec<f64>) -> Evaluation {
-            self.inner.evaluate_blocks(x, by_block)
-        }
-        fn block_size(&self) -> usize {
-            3
-        }
-        fn shifted_copy(
-            &self,
-            x: &[f64],
-            block: usize,
-            donor: usize,
-            _: &mut Rng,
-            out: &mut [f64],
-        ) -> bool {
-            self.asked
-                .lock()
-                .expect("not poisoned")
-                .push((block, donor));
-            out.copy_from_slice(&x[3 * donor..3 * donor + 3]);
-            true
-        }
-    }
-
     #[test]
     fn shifted_copies_come_after_a_round_without_progress_for_the_violating_block() {
         let asked = |shifted_copies: bool, evaluations: u64| {
-            let p = CountsShiftedCopies {
-                inner: LastBlockViolated {
-                    bounds: vec![Bound::new(-5.0, 5.0); 12],
-                    prev: std::sync::Mutex::new(vec![f64::NAN; 12]),
-                    visiting_last: 0.into(),
-                },
-                asked: std::sync::Mutex::new(Vec::new()),
-            };
+            let p = CountsMoves::new();
             let mut opt = Cooperative::new(CoopParams {
                 shifted_copies,
                 ..CoopParams::DEFAULT
@@ -1176,7 +1156,7 @@ mod tests {
                 &mut rng_from_seed(3),
                 &mut |_| {},
             );
-            p.asked.into_inner().expect("not poisoned")
+            p.copies.into_inner().expect("not poisoned")
         };
         assert!(asked(false, 6000).is_empty());
         // A round visits the four blocks, 100 evaluations a visit: none has ended yet.
