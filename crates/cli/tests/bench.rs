@@ -703,3 +703,28 @@ fn an_experiment_files_scenario_files_are_relative_to_it() {
                 .and(predicate::str::contains("resume it from there")),
         );
 }
+
+#[test]
+fn a_folder_resumed_by_another_build_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("b");
+    bench(&out, &["--seed", "1"]).success();
+    let builds: Vec<String> =
+        serde_json::from_str(&std::fs::read_to_string(out.join("builds.json")).unwrap()).unwrap();
+    assert_eq!(builds.len(), 1, "{builds:?}");
+    // The same build resumes without a word.
+    bench(&out, &["--seed", "1", "--resume"])
+        .success()
+        .stderr(predicate::str::contains("made by build").not());
+    // Runs recorded by another build: said before any run, and this build is added.
+    std::fs::write(out.join("builds.json"), "[\"0123456789ab\"]").unwrap();
+    bench(&out, &["--seed", "1", "--resume"])
+        .success()
+        .stderr(predicate::str::contains(
+            "its runs were made by build 0123456789ab, this is build",
+        ));
+    let builds: Vec<String> =
+        serde_json::from_str(&std::fs::read_to_string(out.join("builds.json")).unwrap()).unwrap();
+    assert_eq!(builds[0], "0123456789ab");
+    assert_eq!(builds.len(), 2, "{builds:?}");
+}

@@ -63,6 +63,55 @@ pub enum StoreError {
     },
 }
 
+/// The file of an experiment folder that lists the builds that wrote runs into it, in
+/// order ([`build_id`]): a folder resumed by another build may mix two versions' results.
+pub const BUILDS_FILE: &str = "builds.json";
+
+/// This build: its git commit, or `v` and the crate version outside a git checkout.
+#[must_use]
+pub fn build_id() -> &'static str {
+    env!("SWARMPLAN_BUILD")
+}
+
+/// The builds recorded in `dir` (empty if none: a new folder, or one of an older build).
+pub fn read_builds(dir: &Path) -> Result<Vec<String>, StoreError> {
+    let path = dir.join(BUILDS_FILE);
+    match std::fs::read_to_string(&path) {
+        Ok(text) => serde_json::from_str(&text).map_err(|e| StoreError::BadSpec {
+            path,
+            message: e.to_string(),
+        }),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(Vec::new()),
+        Err(source) => Err(StoreError::Io { path, source }),
+    }
+}
+
+/// A warning for a folder whose runs were made by other builds than this one, if so.
+pub fn other_builds_warning(dir: &Path) -> Result<Option<String>, StoreError> {
+    let builds = read_builds(dir)?;
+    let has_runs = dir.join(RUNS_FILE).is_file();
+    Ok((has_runs && !builds.is_empty() && !builds.iter().any(|b| b == build_id())).then(|| {
+        format!(
+            "{}: its runs were made by build {}, this is build {}; if a method changed between them, the folder now mixes two versions' results (a new --out keeps them apart)",
+            dir.display(),
+            builds.join(", "),
+            build_id()
+        )
+    }))
+}
+
+/// Adds this build to `dir`'s list.
+fn record_build(dir: &Path) -> Result<(), StoreError> {
+    let mut builds = read_builds(dir)?;
+    if !builds.iter().any(|b| b == build_id()) {
+        builds.push(build_id().to_owned());
+        let path = dir.join(BUILDS_FILE);
+        let text = serde_json::to_string_pretty(&builds).expect("a list serialises");
+        std::fs::write(&path, text + "\n").map_err(io(&path))?;
+    }
+    Ok(())
+}
+
 /// The file of an experiment folder that records what each scenario was when its runs
 /// were made: name -> fingerprint (scenario and terrain).
 pub const SCENARIOS_FILE: &str = "scenarios.json";
@@ -292,6 +341,7 @@ impl RecordWriter {
         let path = dir.join(RUNS_FILE);
         check_unique(&path, &existing)?;
         check_belong(&path, spec, &existing)?;
+        record_build(dir)?;
         let file = OpenOptions::new()
             .create(true)
             .append(true)

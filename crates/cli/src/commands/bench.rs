@@ -376,6 +376,9 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
             }
         }
     };
+    if let Some(warning) = swarmplan_experiment::store::other_builds_warning(&args.out)? {
+        eprintln!("warning: {warning}");
+    }
     let outcome = run_experiment(&spec, &args.out, opts, &mut start, &done)?;
     bar.finish_and_clear();
     let secs = started.elapsed().as_secs_f64();
