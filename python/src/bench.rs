@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use pyo3::prelude::*;
 use swarmplan_experiment::matrix::{BudgetPolicy, ExperimentSpec, ParamSet};
 use swarmplan_experiment::runner::{run_experiment, RunnerError, RunnerOptions};
-use swarmplan_experiment::store::StoreError;
+use swarmplan_experiment::store::{other_builds_warning, StoreError};
 
 use swarmplan_core::optim::cancel::Cancel;
 
@@ -93,6 +93,20 @@ pub fn bench(
     };
     std::fs::create_dir_all(&out)
         .map_err(|e| bad(format!("{}: cannot create: {e}", out.display())))?;
+    // As the CLI says it: runs of another build in the same folder (a RuntimeWarning).
+    if let Some(text) = other_builds_warning(&out).map_err(to_py)? {
+        let text = std::ffi::CString::new(text.replace(
+            " (a new --out keeps them apart)",
+            " (another out keeps them apart)",
+        ))
+        .map_err(to_py)?;
+        PyErr::warn(
+            py,
+            &py.get_type::<pyo3::exceptions::PyRuntimeWarning>(),
+            &text,
+            1,
+        )?;
+    }
     let outcome = interrupt::interruptible(py, |cancel| {
         let opts = RunnerOptions { cancel, ..opts };
         run_experiment(&spec, &out, opts, &mut |_| {}, &|_| {})

@@ -129,3 +129,11 @@ def test_a_plan_of_another_scenario_names_the_keyword_that_allows_it(cli, tmp_pa
     other = swarmplan.Problem("paper-case1")
     message = raised(other.evaluate_plan, out / "plan.json")
     assert "allow_other_terrain=True" in message and "--allow" not in message, message
+
+
+def test_resuming_a_folder_of_another_build_warns(tmp_path):
+    out = tmp_path / "b"
+    swarmplan.bench(["tiny"], ["gwo"], evaluations=100, out=out)
+    (out / "builds.json").write_text('["0123456789ab"]')
+    with pytest.warns(RuntimeWarning, match="made by build 0123456789ab"):
+        swarmplan.bench(["tiny"], ["gwo"], evaluations=100, out=out, resume=True)
