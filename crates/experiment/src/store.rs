@@ -75,14 +75,23 @@ pub fn build_id() -> &'static str {
 
 /// The builds recorded in `dir` (empty if none: a new folder, or one of an older build).
 pub fn read_builds(dir: &Path) -> Result<Vec<String>, StoreError> {
-    let path = dir.join(BUILDS_FILE);
-    match std::fs::read_to_string(&path) {
+    read_json_or_default(&dir.join(BUILDS_FILE))
+}
+
+/// The JSON value of `path`, or the type's default (empty) when there is no such file.
+fn read_json_or_default<T: serde::de::DeserializeOwned + Default>(
+    path: &Path,
+) -> Result<T, StoreError> {
+    match std::fs::read_to_string(path) {
         Ok(text) => serde_json::from_str(&text).map_err(|e| StoreError::BadSpec {
-            path,
+            path: path.to_path_buf(),
             message: e.to_string(),
         }),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(Vec::new()),
-        Err(source) => Err(StoreError::Io { path, source }),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(T::default()),
+        Err(source) => Err(StoreError::Io {
+            path: path.to_path_buf(),
+            source,
+        }),
     }
 }
 
@@ -118,15 +127,7 @@ pub const SCENARIOS_FILE: &str = "scenarios.json";
 
 /// Reads `dir/scenarios.json` (empty if absent: folders of older builds).
 pub fn read_fingerprints(dir: &Path) -> Result<BTreeMap<String, String>, StoreError> {
-    let path = dir.join(SCENARIOS_FILE);
-    match std::fs::read_to_string(&path) {
-        Ok(text) => serde_json::from_str(&text).map_err(|e| StoreError::BadSpec {
-            path,
-            message: e.to_string(),
-        }),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(BTreeMap::new()),
-        Err(source) => Err(StoreError::Io { path, source }),
-    }
+    read_json_or_default(&dir.join(SCENARIOS_FILE))
 }
 
 /// Checks `now` (scenario -> fingerprint) against what `dir` recorded, and records any
