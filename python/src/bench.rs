@@ -11,7 +11,7 @@ use swarmplan_experiment::store::{other_builds_warning, StoreError};
 use swarmplan_core::optim::cancel::Cancel;
 
 use crate::args;
-use crate::errors::{bad, message, to_py};
+use crate::errors::{bad, message, to_py, with_advice};
 use crate::interrupt;
 
 /// Most worker threads (as the CLI).
@@ -95,11 +95,8 @@ pub fn bench(
         .map_err(|e| bad(format!("{}: cannot create: {e}", out.display())))?;
     // As the CLI says it: runs of another build in the same folder (a RuntimeWarning).
     if let Some(text) = other_builds_warning(&out).map_err(to_py)? {
-        let text = std::ffi::CString::new(text.replace(
-            " (a new --out keeps them apart)",
-            " (another out keeps them apart)",
-        ))
-        .map_err(to_py)?;
+        let text = std::ffi::CString::new(with_advice(text, "another out keeps them apart"))
+            .map_err(to_py)?;
         PyErr::warn(
             py,
             &py.get_type::<pyo3::exceptions::PyRuntimeWarning>(),
@@ -138,8 +135,8 @@ fn in_python_terms(e: &RunnerError) -> String {
         _ => None,
     };
     let text = message(e);
-    match advice.zip(text.rsplit_once("; ")) {
-        Some((advice, (head, _))) => format!("{head}; {advice}"),
+    match advice {
+        Some(advice) => with_advice(text, advice),
         None => text,
     }
 }

@@ -33,6 +33,15 @@ pub fn message(e: &dyn std::error::Error) -> String {
     out
 }
 
+/// A CLI message with its advice (the part after the last `; `, which names the CLI's
+/// flags) replaced by `advice` in Python's terms; a message without one as it is.
+pub fn with_advice(text: String, advice: &str) -> String {
+    match text.rsplit_once("; ") {
+        Some((head, _)) => format!("{head}; {advice}"),
+        None => text,
+    }
+}
+
 /// A [`SwarmplanError`] with `message`.
 pub fn bad(message: impl Into<String>) -> PyErr {
     SwarmplanError::new_err(message.into())

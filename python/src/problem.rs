@@ -20,7 +20,7 @@ use swarmplan_core::world::World;
 use swarmplan_io::artifact::AssessmentReport;
 use swarmplan_io::plan_file::{plan_file, read_plan, PlanFileError, Provenance};
 
-use crate::errors::{bad, message, to_py};
+use crate::errors::{bad, message, to_py, with_advice};
 use crate::{args, scenario};
 
 /// Most values `sample_initial` returns (1 GiB of f64): a larger request is refused, not
@@ -85,10 +85,10 @@ impl Problem {
         };
         read_plan(path, &self.world, provenance).map_err(|e| match e {
             // The CLI's advice, in this method's terms.
-            PlanFileError::Provenance { .. } => bad(match message(&e).rsplit_once("; ") {
-                Some((head, _)) => format!("{head}; allow_other_terrain=True assesses it anyway"),
-                None => message(&e),
-            }),
+            PlanFileError::Provenance { .. } => bad(with_advice(
+                message(&e),
+                "allow_other_terrain=True assesses it anyway",
+            )),
             _ => to_py(e),
         })
     }

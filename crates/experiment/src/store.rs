@@ -63,6 +63,16 @@ pub enum StoreError {
     },
 }
 
+/// Refuses a folder that holds a plan (`plan.json`): plan and bench folders are never mixed.
+pub fn check_not_a_plan_folder(dir: &Path) -> Result<(), StoreError> {
+    if dir.join("plan.json").exists() {
+        return Err(StoreError::HoldsPlan {
+            dir: dir.to_path_buf(),
+        });
+    }
+    Ok(())
+}
+
 /// The file of an experiment folder that lists the builds that wrote runs into it, in
 /// order ([`build_id`]): a folder resumed by another build may mix two versions' results.
 pub const BUILDS_FILE: &str = "builds.json";
@@ -101,7 +111,7 @@ pub fn other_builds_warning(dir: &Path) -> Result<Option<String>, StoreError> {
     let has_runs = dir.join(RUNS_FILE).is_file();
     Ok((has_runs && !builds.is_empty() && !builds.iter().any(|b| b == build_id())).then(|| {
         format!(
-            "{}: its runs were made by build {}, this is build {}; if a method changed between them, the folder now mixes two versions' results (a new --out keeps them apart)",
+            "{}: its runs were made by build {}, this is build {}; if a method changed between them, the folder now mixes two versions' results; a new --out keeps them apart",
             dir.display(),
             builds.join(", "),
             build_id()
@@ -312,11 +322,7 @@ impl RecordWriter {
         spec: &ExperimentSpec,
         resume: bool,
     ) -> Result<(Self, Vec<RunRecord>), StoreError> {
-        if dir.join("plan.json").exists() {
-            return Err(StoreError::HoldsPlan {
-                dir: dir.to_path_buf(),
-            });
-        }
+        check_not_a_plan_folder(dir)?;
         std::fs::create_dir_all(dir).map_err(io(dir))?;
         let lock = lock(dir)?;
         let spec_path = dir.join(SPEC_FILE);

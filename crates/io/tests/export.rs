@@ -151,6 +151,12 @@ fn qgc_plan_files_follow_the_documented_format_and_the_plan() {
             "trajectory.csv"
         ]
     );
+    // `plan --force` clears old exports by these names, and nothing else.
+    assert!(names
+        .iter()
+        .all(|n| swarmplan_io::export::is_mission_file(n)));
+    assert!(!swarmplan_io::export::is_mission_file("uav.plan"));
+    assert!(!swarmplan_io::export::is_mission_file("notes.csv"));
     let mission = Mission::new(&world, &plan, &frame()).unwrap();
     for path in &mission.paths {
         let name = format!("uav{}.plan", path.uav);

@@ -107,7 +107,7 @@ fn recorded_files_reachable(spec: &ExperimentSpec, stored: &Path) -> Result<()> 
     let files = spec
         .scenarios
         .iter()
-        .filter(|s| Path::new(s).extension().is_some_and(|e| e == "toml"))
+        .filter(|s| !swarmplan_io::scenario::is_scenario_name(s))
         .chain(spec.terrain.as_ref());
     for f in files {
         anyhow::ensure!(

@@ -7,8 +7,8 @@
 //! numbered sibling (`out-2`, `out-3`, ...), said on stderr, unless `--force` asks to
 //! replace it; then every file the old plan's run wrote (records, figures, exports, the
 //! report) is removed first, so that no old figure or mission file is taken for the new
-//! plan's, and nothing else in the folder is touched. Plan and bench folders are never mixed: `plan` refuses a folder with
-//! `runs.jsonl`, `bench` one with `plan.json`.
+//! plan's, and nothing else in the folder is touched. Plan and bench folders are never
+//! mixed: `plan` refuses a folder with `runs.jsonl`, `bench` one with `plan.json`.
 
 use std::path::{Path, PathBuf};
 
@@ -100,12 +100,7 @@ fn clear_previous_plan(dir: &Path) -> Result<()> {
 
 /// Refuses a bench into a plan folder.
 pub fn bench_folder(out: &Path) -> Result<()> {
-    if out.is_dir() && holds(out, "plan.json") {
-        bail!(
-            "--out {}: holds a plan (plan.json); a bench needs its own folder",
-            out.display()
-        );
-    }
+    swarmplan_experiment::store::check_not_a_plan_folder(out).context("--out")?;
     ensure_writable(out, "--out")
 }
 
