@@ -299,18 +299,28 @@ impl Problem for PlanningProblem<'_> {
         3 * self.frame.n + usize::from(timing.pace_is_free()) + usize::from(timing.delay_is_free())
     }
 
-    /// Free waypoint k of UAV `block` (uniform among them) moved by a Gaussian offset,
-    /// [`NUDGE_SEPARATIONS`] separation distances wide horizontally and one vertically,
-    /// clamped into the map box and the altitude band; the plan is then encoded again, so
-    /// in a motion encoding only the moves into and out of that waypoint change.
-    fn nudge(&self, x: &[f64], block: usize, rng: &mut Rng, out: &mut [f64]) -> bool {
+    /// Free waypoint k of UAV `block` (`site` + 1, or uniform among them) moved by a
+    /// Gaussian offset, [`NUDGE_SEPARATIONS`] separation distances wide horizontally and one
+    /// vertically, clamped into the map box and the altitude band; the plan is then encoded
+    /// again, so in a motion encoding only the moves into and out of that waypoint change.
+    fn nudge(
+        &self,
+        x: &[f64],
+        block: usize,
+        site: Option<usize>,
+        rng: &mut Rng,
+        out: &mut [f64],
+    ) -> bool {
         let size = self.block_size();
         let f = &self.frame;
         if f.n == 0 || block >= self.world.uav_count() || out.len() != size {
             return false;
         }
         let mut plan = self.encoding.decode(x);
-        let k = rand::Rng::random_range(rng, 1..=f.n);
+        let k = match site {
+            Some(s) if s < f.n => s + 1,
+            _ => rand::Rng::random_range(rng, 1..=f.n),
+        };
         let sep = self.world.spec.timing.separation.max(1.0);
         let mut normal = || -> f64 { StandardNormal.sample(rng) };
         let (dx, dy, dz) = (normal(), normal(), normal());
@@ -327,6 +337,39 @@ impl Problem for PlanningProblem<'_> {
         let encoded = self.encode(&plan);
         out.copy_from_slice(&encoded[block * size..(block + 1) * size]);
         true
+    }
+
+    /// Per free waypoint of UAV `block`, the hard violations of the plan that it or a pair
+    /// it belongs to holds nearest that waypoint: each violation's measure (1 + amount /
+    /// scale) goes to the two ends of the waypoint segment nearest its place (horizontally;
+    /// a start or goal end gets nothing). Violations without a place (energy, speed) add
+    /// nothing. Assessed with a report, so the places come from the same checks as
+    /// `swarmplan evaluate`'s.
+    fn hot_spots(&self, x: &[f64], block: usize, out: &mut Vec<f64>) {
+        out.clear();
+        let n = self.frame.n;
+        if n == 0 || block >= self.world.uav_count() {
+            return;
+        }
+        let plan = self.encoding.decode(x);
+        let assessed = assess(self.world, &plan, true);
+        let path = &plan.uavs[block].waypoints;
+        out.resize(n, 0.0);
+        for v in assessed.violations.iter().flatten() {
+            if !v.hard || (v.uav != block && v.other != Some(block)) {
+                continue;
+            }
+            let weight = 1.0 + v.amount / v.kind.scale();
+            let Some([px, py, _]) = v.position else {
+                continue;
+            };
+            let s = nearest_segment(path.iter().map(|w| (w.x, w.y)), (px, py));
+            for k in [s, s + 1] {
+                if (1..=n).contains(&k) {
+                    out[k - 1] += weight;
+                }
+            }
+        }
     }
 
     fn shifted_copy(
@@ -376,4 +419,29 @@ impl Problem for PlanningProblem<'_> {
         self.draw_delays(rng, &mut plan);
         self.encoding.encode_into(&plan, out);
     }
+}
+
+/// Index of the segment (k joins points k and k + 1) of the polyline through `points`
+/// nearest `p` in the plane; 0 for fewer than two points.
+fn nearest_segment(points: impl Iterator<Item = (f64, f64)>, p: (f64, f64)) -> usize {
+    let mut best = (f64::INFINITY, 0);
+    let mut prev: Option<(f64, f64)> = None;
+    for (k, b) in points.enumerate() {
+        if let Some(a) = prev {
+            let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+            let len2 = dx * dx + dy * dy;
+            let t = if len2 > 0.0 {
+                (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let (qx, qy) = (a.0 + t * dx - p.0, a.1 + t * dy - p.1);
+            let d2 = qx * qx + qy * qy;
+            if d2 < best.0 {
+                best = (d2, k - 1);
+            }
+        }
+        prev = Some(b);
+    }
+    best.1
 }

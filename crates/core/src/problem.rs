@@ -158,12 +158,30 @@ pub trait Problem: Sync {
 
     /// A local move of block `block` of `x`, written into `out` (that block's values, inside
     /// the bounds): for a planning problem, one free waypoint of the UAV moved by a few
-    /// separation distances, the rest of its path kept where it is. Returns false, writing
-    /// nothing, when the problem has no such move (the default). Not an evaluation; it draws
-    /// only from `rng`.
-    fn nudge(&self, x: &[f64], block: usize, rng: &mut Rng, out: &mut [f64]) -> bool {
-        let _ = (x, block, rng, out);
+    /// separation distances, the rest of its path kept where it is. `site` picks what moves
+    /// (an index into [`Problem::hot_spots`]' weights); `None` draws it uniformly. Returns
+    /// false, writing nothing, when the problem has no such move (the default). Not an
+    /// evaluation; it draws only from `rng`.
+    fn nudge(
+        &self,
+        x: &[f64],
+        block: usize,
+        site: Option<usize>,
+        rng: &mut Rng,
+        out: &mut [f64],
+    ) -> bool {
+        let _ = (x, block, site, rng, out);
         false
+    }
+
+    /// Weights over the sites of block `block`'s [nudges](Problem::nudge), by how much of
+    /// `x`'s hard violation lies at each (a planning problem: per free waypoint of the UAV,
+    /// the violations it or its pairs hold next to it), written into `out`; empty when
+    /// nothing is known (the default). It assesses `x`, so the [`super::optim::Evaluator`]
+    /// counts it as an evaluation.
+    fn hot_spots(&self, x: &[f64], block: usize, out: &mut Vec<f64>) {
+        let _ = (x, block);
+        out.clear();
     }
 
     /// Block `donor`'s path of `x` made block `block`'s, shifted by a random offset of a

@@ -856,7 +856,7 @@ fn a_nudge_moves_one_free_waypoint_of_one_uav_and_keeps_the_rest() {
     for _ in 0..50 {
         p.sample_initial(&mut rng, &mut x);
         let mut block = vec![f64::NAN; size];
-        assert!(p.nudge(&x, 1, &mut rng, &mut block));
+        assert!(p.nudge(&x, 1, None, &mut rng, &mut block));
         let mut y = x.clone();
         y[size..2 * size].copy_from_slice(&block);
         for (b, v) in block.iter().enumerate() {
@@ -897,6 +897,41 @@ fn a_nudge_moves_one_free_waypoint_of_one_uav_and_keeps_the_rest() {
         "{alone} of {}",
         moved_by.len()
     );
+}
+
+#[test]
+fn hot_spots_weigh_the_free_waypoints_next_to_a_uavs_violations() {
+    use swarmplan_core::encoding::{EncodingKind, InitKind};
+    use swarmplan_core::planning::PlanningProblem;
+    use swarmplan_core::problem::Problem;
+    let mut s = spec(&[[100.0, 100.0, 150.0], [100.0, 500.0, 150.0]]);
+    let w = World::new(s.clone(), flat()).unwrap();
+    let p = PlanningProblem::new(&w, EncodingKind::Cartesian, InitKind::Line);
+    let n = p.block_size() / 3;
+    let plan = Plan::straight(&[w.start(0), w.start(1)], w.goal, n);
+    // A small threat on UAV 1's free waypoint 3, far from UAV 0's line.
+    let at = plan.uavs[1].waypoints[3];
+    s.threats = vec![Threat {
+        x: at.x,
+        y: at.y,
+        z: 150.0,
+        r: 5.0,
+    }];
+    let w = World::new(s, flat()).unwrap();
+    let p = PlanningProblem::new(&w, EncodingKind::Cartesian, InitKind::Line);
+    let x = p.encode(&plan);
+    let (mut own, mut other) = (Vec::new(), Vec::new());
+    p.hot_spots(&x, 1, &mut own);
+    p.hot_spots(&x, 0, &mut other);
+    assert_eq!(own.len(), n);
+    // The segments into and out of waypoint 3 cross the threat: waypoint 3 (site 2) is
+    // the end of both, waypoints 2 and 4 of one each; the first half holds nothing else.
+    assert!(own[2] > own[1] && own[1] > 0.0 && own[3] > 0.0, "{own:?}");
+    assert!(own[0] == 0.0 && own[4] == 0.0, "{own:?}");
+    assert!(other[..n / 2].iter().all(|&v| v == 0.0), "{other:?}");
+    // Out of range: nothing known.
+    p.hot_spots(&x, 2, &mut own);
+    assert!(own.is_empty());
 }
 
 #[test]

@@ -25,8 +25,18 @@ impl Problem for Full<'_> {
     fn sample_initial(&self, rng: &mut Rng, out: &mut [f64]) {
         self.0.sample_initial(rng, out);
     }
-    fn nudge(&self, x: &[f64], block: usize, rng: &mut Rng, out: &mut [f64]) -> bool {
-        self.0.nudge(x, block, rng, out)
+    fn nudge(
+        &self,
+        x: &[f64],
+        block: usize,
+        site: Option<usize>,
+        rng: &mut Rng,
+        out: &mut [f64],
+    ) -> bool {
+        self.0.nudge(x, block, site, rng, out)
+    }
+    fn hot_spots(&self, x: &[f64], block: usize, out: &mut Vec<f64>) {
+        self.0.hot_spots(x, block, out);
     }
     fn evaluate_blocks(&self, x: &[f64], by_block: &mut Vec<f64>) -> Evaluation {
         self.0.evaluate_blocks(x, by_block)

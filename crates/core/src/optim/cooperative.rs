@@ -62,7 +62,13 @@
 //! rest of the path kept. A perturbation of every value of a motion-encoded path moves all
 //! of it; what is left near feasibility is local (two UAVs converging at the edge of the
 //! landing zone, a corner clipping a threat), and one waypoint moved fixes it without
-//! breaking the rest.
+//! breaking the rest. The waypoint is drawn where the violations are (`aimed_nudges`,
+//! [`Evaluator::hot_spots`]): next to the places of the UAV's own violations and its
+//! separation losses, in proportion to their measure, found by one assessment of the
+//! context per visit that counts as an evaluation. Drawn uniformly, the first free
+//! waypoint, which sets the bearing at which a UAV leaves the take-off zone, was moved in
+//! one nudge of ten, yet most runs left infeasible on the outside instances held a single
+//! separation loss at a zone's edge (docs/results.md, "Aimed nudges").
 //!
 //! **Restarts.** A context can be stuck in a state no single block can repair (all UAVs out
 //! of contact in an interference window, where only a joint move makes a relay chain; a
@@ -169,6 +175,13 @@ pub struct CoopParams {
     /// far apart, where a perturbed copy flies on top of its donor. Measured in
     /// docs/results.md ("Shifted copies").
     pub shifted_copies: bool,
+    /// Share of the nudges aimed at where the block's violations are
+    /// ([`Evaluator::hot_spots`]: in a planning problem the free waypoints nearest the
+    /// places of the UAV's violations, drawn in proportion to their measure); the rest, and
+    /// every nudge when no violation has a place, move a waypoint drawn uniformly. Finding
+    /// the places assesses the context once per visit, counted as an evaluation. 0: no
+    /// aim, and neither that evaluation nor a random draw for it.
+    pub aimed_nudges: f64,
 }
 
 impl CoopParams {
@@ -191,6 +204,7 @@ impl CoopParams {
         transplant: true,
         nudges: 4,
         shifted_copies: true,
+        aimed_nudges: 1.0,
     };
 
     pub fn validate(&self) -> Result<(), ParamsError> {
@@ -242,6 +256,12 @@ impl CoopParams {
             "focus",
             "a number in [0, 1]",
             self.focus,
+        )?;
+        check(
+            (0.0..=1.0).contains(&self.aimed_nudges),
+            "aimed_nudges",
+            "a number in [0, 1]",
+            self.aimed_nudges,
         )
     }
 }
@@ -250,6 +270,19 @@ impl Default for CoopParams {
     fn default() -> Self {
         Self::DEFAULT
     }
+}
+
+/// An index drawn in proportion to `weights` (non-negative, some positive).
+fn weighted_pick(weights: &[f64], rng: &mut Rng) -> usize {
+    let total: f64 = weights.iter().sum();
+    let mut left = rng.random::<f64>() * total;
+    for (k, &w) in weights.iter().enumerate() {
+        if left < w {
+            return k;
+        }
+        left -= w;
+    }
+    weights.iter().rposition(|&w| w > 0.0).unwrap_or(0)
 }
 
 /// `a` better than `b` under `params`' comparison.
@@ -288,6 +321,8 @@ pub struct Cooperative {
     row_shares: Vec<Vec<f64>>,
     /// A point of the initialisation (fresh particles take one block of it).
     scratch: Vec<f64>,
+    /// Weights over the current block's nudge sites ([`Evaluator::hot_spots`]).
+    spots: Vec<f64>,
     /// Spread s_b of each block's visits.
     spread: Vec<f64>,
     /// The context's evaluation when the current visit started.
@@ -339,6 +374,7 @@ impl Cooperative {
             evals: Vec::new(),
             row_shares: Vec::new(),
             scratch: Vec::new(),
+            spots: Vec::new(),
             spread: Vec::new(),
             visit_start: Evaluation::worst(),
             round_start: Evaluation::worst(),
@@ -543,6 +579,10 @@ impl Cooperative {
             0
         };
         let first_nudge = last_perturbed + 1 - nudges;
+        let aim = nudges > 0
+            && self.params.aimed_nudges > 0.0
+            && ev.hot_spots(&self.context, b, &mut self.spots).is_some()
+            && self.spots.iter().any(|&w| w > 0.0);
         // After a round without progress the transplant is a shifted copy.
         let shift = self.params.shifted_copies && self.stale_rounds >= 1;
         let mut from = 1;
@@ -552,9 +592,17 @@ impl Cooperative {
                 if i <= fresh {
                     ev.sample_initial(rng, &mut sample);
                     self.x[i * len..(i + 1) * len].copy_from_slice(&sample[r.clone()]);
-                } else if (first_nudge..=last_perturbed).contains(&i)
-                    && ev.nudge(&self.context, b, rng, &mut self.x[i * len..(i + 1) * len])
-                {
+                } else if (first_nudge..=last_perturbed).contains(&i) && {
+                    let site = (aim && rng.random::<f64>() < self.params.aimed_nudges)
+                        .then(|| weighted_pick(&self.spots, rng));
+                    ev.nudge(
+                        &self.context,
+                        b,
+                        site,
+                        rng,
+                        &mut self.x[i * len..(i + 1) * len],
+                    )
+                } {
                     // The problem's local move of the context's block.
                 } else if i == n - 1
                     && shift
@@ -1058,11 +1106,15 @@ mod tests {
     }
 
     /// [`LastBlockViolated`]'s plateau, counting the nudges asked for per block, and
-    /// recording the shifted copies asked for as (block, donor).
+    /// recording the shifted copies asked for as (block, donor), the hot spots asked for
+    /// (per block) and the site of every nudge. Its hot spots put every weight on site 2
+    /// of 3.
     struct CountsMoves {
         inner: LastBlockViolated,
         asked: std::sync::Mutex<Vec<usize>>,
         copies: std::sync::Mutex<Vec<(usize, usize)>>,
+        spots: std::sync::Mutex<Vec<usize>>,
+        sites: std::sync::Mutex<Vec<Option<usize>>>,
     }
 
     impl CountsMoves {
@@ -1075,6 +1127,8 @@ mod tests {
                 },
                 asked: std::sync::Mutex::new(vec![0; 4]),
                 copies: std::sync::Mutex::new(Vec::new()),
+                spots: std::sync::Mutex::new(vec![0; 4]),
+                sites: std::sync::Mutex::new(Vec::new()),
             }
         }
     }
@@ -1092,8 +1146,16 @@ mod tests {
         fn block_size(&self) -> usize {
             3
         }
-        fn nudge(&self, x: &[f64], block: usize, _: &mut Rng, out: &mut [f64]) -> bool {
+        fn nudge(
+            &self,
+            x: &[f64],
+            block: usize,
+            site: Option<usize>,
+            _: &mut Rng,
+            out: &mut [f64],
+        ) -> bool {
             self.asked.lock().expect("not poisoned")[block] += 1;
+            self.sites.lock().expect("not poisoned").push(site);
             out.copy_from_slice(&x[3 * block..3 * block + 3]);
             true
         }
@@ -1111,6 +1173,11 @@ mod tests {
                 .push((block, donor));
             out.copy_from_slice(&x[3 * donor..3 * donor + 3]);
             true
+        }
+        fn hot_spots(&self, _: &[f64], block: usize, out: &mut Vec<f64>) {
+            self.spots.lock().expect("not poisoned")[block] += 1;
+            out.clear();
+            out.extend([0.0, 0.0, 1.5]);
         }
     }
 
@@ -1138,6 +1205,48 @@ mod tests {
         assert!(
             two[3] >= 4 && two[3] % 2 == 0,
             "two per visit of block 3: {two:?}"
+        );
+    }
+
+    #[test]
+    fn aimed_nudges_ask_for_the_hot_spots_once_per_violating_visit_and_move_a_hot_site() {
+        let run = |aimed_nudges: f64| {
+            let p = CountsMoves::new();
+            let mut opt = Cooperative::new(CoopParams {
+                aimed_nudges,
+                focus: 0.0,
+                ..CoopParams::DEFAULT
+            });
+            let out = solve(
+                &p,
+                &mut opt,
+                Budget::evaluations(3000),
+                &mut rng_from_seed(3),
+                &mut |_| {},
+            );
+            // The hot spots are evaluations: the budget holds them too.
+            assert_eq!(out.evaluations, 3000);
+            let asked = p.asked.into_inner().expect("not poisoned");
+            let spots = p.spots.into_inner().expect("not poisoned");
+            (asked, spots, p.sites.into_inner().expect("not poisoned"))
+        };
+        let (asked, spots, sites) = run(0.0);
+        assert_eq!(spots, vec![0; 4]);
+        assert!(sites.iter().all(Option::is_none) && asked[3] > 0);
+        let (asked, spots, sites) = run(1.0);
+        assert_eq!(spots[..3], [0, 0, 0], "{spots:?}");
+        let per_visit = CoopParams::DEFAULT.nudges;
+        // One look per visit (the last visit may be cut short by the budget).
+        assert!(
+            spots[3] > 0 && asked[3].abs_diff(per_visit * spots[3]) <= per_visit,
+            "{asked:?} {spots:?}"
+        );
+        assert!(sites.iter().all(|s| *s == Some(2)), "{sites:?}");
+        let (_, _, sites) = run(0.5);
+        let hot = sites.iter().filter(|s| s.is_some()).count();
+        assert!(
+            sites.iter().all(|s| s.is_none() || *s == Some(2)) && hot > 0 && hot < sites.len(),
+            "{sites:?}"
         );
     }
 

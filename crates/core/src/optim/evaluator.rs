@@ -64,8 +64,23 @@ impl<'a> Evaluator<'a> {
     }
 
     /// The problem's local move of one block ([`Problem::nudge`]; not an evaluation).
-    pub fn nudge(&self, x: &[f64], block: usize, rng: &mut Rng, out: &mut [f64]) -> bool {
-        self.problem.nudge(x, block, rng, out)
+    pub fn nudge(
+        &self,
+        x: &[f64],
+        block: usize,
+        site: Option<usize>,
+        rng: &mut Rng,
+        out: &mut [f64],
+    ) -> bool {
+        self.problem.nudge(x, block, site, rng, out)
+    }
+
+    /// Where block `block`'s violations of `x` lie, as weights over its nudge sites
+    /// ([`Problem::hot_spots`]); counted as one evaluation, `None` when the budget is spent.
+    pub fn hot_spots(&mut self, x: &[f64], block: usize, out: &mut Vec<f64>) -> Option<()> {
+        self.admit(x)?;
+        self.problem.hot_spots(x, block, out);
+        Some(())
     }
 
     /// The problem's shifted copy of one block's path into another ([`Problem::shifted_copy`];
