@@ -10,7 +10,7 @@ use std::cell::RefCell;
 use crate::cost::{assess, assess_bounded, assess_into, Assessment, Cutoff, Scratch};
 use crate::encoding::init::{sample_corridor_plan, sample_fan_plan, sample_line_plan};
 use crate::encoding::{self, EncodingKind, Frame, InitKind, PathEncoding};
-use crate::feasibility::ViolationSink;
+use crate::feasibility::{ViolationKind, ViolationSink};
 use crate::plan::Plan;
 use crate::problem::{fill_uniform, Bound, Evaluation, Problem};
 use crate::rng::Rng;
@@ -46,6 +46,10 @@ pub struct PlanningProblem<'w> {
 /// Horizontal spread of a nudge ([`Problem::nudge`]), in separation distances: enough to
 /// turn two converging approaches apart at the edge of the landing zone.
 pub const NUDGE_SEPARATIONS: f64 = 2.0;
+
+/// A nudge of a departure delay: the standard deviation of its Gaussian move, as a share of
+/// `timing.max_delay`.
+pub const NUDGE_DELAY_SHARE: f64 = 0.25;
 
 /// Horizontal offset of a shifted copy ([`Problem::shifted_copy`]), in separation
 /// distances, drawn uniformly from this range.
@@ -303,6 +307,8 @@ impl Problem for PlanningProblem<'_> {
     /// Gaussian offset, [`NUDGE_SEPARATIONS`] separation distances wide horizontally and one
     /// vertically, clamped into the map box and the altitude band; the plan is then encoded
     /// again, so in a motion encoding only the moves into and out of that waypoint change.
+    /// When departure delays are free, site n (after the n free waypoints) is the UAV's
+    /// delay, moved by a Gaussian of [`NUDGE_DELAY_SHARE`] of `timing.max_delay`.
     fn nudge(
         &self,
         x: &[f64],
@@ -317,6 +323,16 @@ impl Problem for PlanningProblem<'_> {
             return false;
         }
         let mut plan = self.encoding.decode(x);
+        let timing = &self.world.spec.timing;
+        if site == Some(f.n) && timing.delay_is_free() && block < plan.delays.len() {
+            let d: f64 = StandardNormal.sample(rng);
+            let delay = &mut plan.delays[block];
+            *delay =
+                (*delay + NUDGE_DELAY_SHARE * timing.max_delay * d).clamp(0.0, timing.max_delay);
+            let encoded = self.encode(&plan);
+            out.copy_from_slice(&encoded[block * size..(block + 1) * size]);
+            return true;
+        }
         let k = match site {
             Some(s) if s < f.n => s + 1,
             _ => rand::Rng::random_range(rng, 1..=f.n),
@@ -343,8 +359,10 @@ impl Problem for PlanningProblem<'_> {
     /// it belongs to holds nearest that waypoint: each violation's measure (1 + amount /
     /// scale) goes to the two ends of the waypoint segment nearest its place (horizontally;
     /// a start or goal end gets nothing). Violations without a place (energy, speed) add
-    /// nothing. Assessed with a report, so the places come from the same checks as
-    /// `swarmplan evaluate`'s.
+    /// nothing there. When departure delays are free one more site, the UAV's delay, takes
+    /// the violations on its first leg (UAVs leaving the take-off zone together) and its
+    /// energy violation while it waits (hovering spends energy). Assessed with a report, so
+    /// the places come from the same checks as `swarmplan evaluate`'s.
     fn hot_spots(&self, x: &[f64], block: usize, out: &mut Vec<f64>) {
         out.clear();
         let n = self.frame.n;
@@ -354,16 +372,29 @@ impl Problem for PlanningProblem<'_> {
         let plan = self.encoding.decode(x);
         let assessed = assess(self.world, &plan, true);
         let path = &plan.uavs[block].waypoints;
-        out.resize(n, 0.0);
+        let delayed = self.world.spec.timing.delay_is_free();
+        out.resize(n + usize::from(delayed), 0.0);
         for v in assessed.violations.iter().flatten() {
             if !v.hard || (v.uav != block && v.other != Some(block)) {
                 continue;
             }
             let weight = 1.0 + v.amount / v.kind.scale();
+            // A UAV waiting at its start spends energy hovering, and a later (or earlier)
+            // departure parts UAVs that leave the take-off zone together.
+            if delayed
+                && v.kind == ViolationKind::Energy
+                && v.uav == block
+                && plan.delay(block) > 0.0
+            {
+                out[n] += weight;
+            }
             let Some([px, py, _]) = v.position else {
                 continue;
             };
             let s = nearest_segment(path.iter().map(|w| (w.x, w.y)), (px, py));
+            if delayed && s == 0 {
+                out[n] += weight;
+            }
             for k in [s, s + 1] {
                 if (1..=n).contains(&k) {
                     out[k - 1] += weight;

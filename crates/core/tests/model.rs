@@ -935,6 +935,51 @@ fn hot_spots_weigh_the_free_waypoints_next_to_a_uavs_violations() {
 }
 
 #[test]
+fn with_delays_free_a_waiting_uavs_energy_weighs_its_delay_and_a_nudge_there_moves_only_it() {
+    use swarmplan_core::encoding::{EncodingKind, InitKind};
+    use swarmplan_core::planning::PlanningProblem;
+    use swarmplan_core::problem::Problem;
+    let mut s = spec(&[[100.0, 100.0, 150.0], [100.0, 500.0, 150.0]]);
+    s.timing.max_delay = 0.2;
+    for u in &mut s.uavs {
+        u.battery_wh = 1.0; // far too small: both UAVs violate energy
+    }
+    let n = s.planning.waypoints;
+    let w = World::new(s, flat()).unwrap();
+    let p = PlanningProblem::new(&w, EncodingKind::Cartesian, InitKind::Line);
+    let mut plan = Plan::straight(&[w.start(0), w.start(1)], w.goal, n);
+    plan.delays = vec![0.0, 0.1];
+    let x = p.encode(&plan);
+    assert!(kinds(&w, &p.decode(&x)).contains(&ViolationKind::Energy));
+    let (mut waits, mut leaves) = (Vec::new(), Vec::new());
+    p.hot_spots(&x, 1, &mut waits);
+    p.hot_spots(&x, 0, &mut leaves);
+    assert_eq!(waits.len(), n + 1);
+    // UAV 1 waits 0.1 of the mission: its energy weighs its delay; UAV 0 leaves at once.
+    assert!(waits[n] > 0.0 && leaves[n] == 0.0, "{waits:?} {leaves:?}");
+    let mut rng = swarmplan_core::rng::rng_from_seed(2);
+    let size = p.block_size();
+    let mut moved = 0;
+    for _ in 0..20 {
+        let mut block = vec![f64::NAN; size];
+        assert!(p.nudge(&x, 1, Some(n), &mut rng, &mut block));
+        let mut y = x.clone();
+        y[size..2 * size].copy_from_slice(&block);
+        let after = p.decode(&y);
+        let kept = after.uavs.iter().zip(&plan.uavs).all(|(a, b)| {
+            a.waypoints
+                .iter()
+                .zip(&b.waypoints)
+                .all(|(p, q)| p.distance(*q) < 1e-6)
+        });
+        assert!(kept, "a delay nudge keeps every waypoint");
+        assert!((0.0..=0.2).contains(&after.delay(1)));
+        moved += usize::from((after.delay(1) - 0.1).abs() > 1e-9);
+    }
+    assert!(moved >= 15, "{moved} of 20 moved the delay");
+}
+
+#[test]
 fn a_shifted_copy_flies_the_donors_path_a_few_separations_aside() {
     use swarmplan_core::encoding::{EncodingKind, InitKind};
     use swarmplan_core::planning::{PlanningProblem, SHIFT_SEPARATIONS};
