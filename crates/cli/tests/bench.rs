@@ -286,6 +286,30 @@ fn shards_aggregate_to_the_unsharded_summary() {
         std::fs::read_to_string(whole.join("summary.json")).unwrap(),
         std::fs::read_to_string(merged.join("summary.json")).unwrap()
     );
+    // The merged folder names the build of its runs, as the shards do.
+    assert_eq!(
+        std::fs::read_to_string(whole.join("builds.json")).unwrap(),
+        std::fs::read_to_string(merged.join("builds.json")).unwrap()
+    );
+    // Shards of two builds merge, with a warning that names each build and its folders.
+    std::fs::write(shards[2].join("builds.json"), "[\"0123456789ab\"]").unwrap();
+    let mixed = dir.path().join("mixed");
+    Command::new(&bin)
+        .arg("aggregate")
+        .args(&shards)
+        .arg("--out")
+        .arg(&mixed)
+        .assert()
+        .success()
+        .stderr(
+            predicate::str::contains("build 0123456789ab (")
+                .and(predicate::str::contains("s3"))
+                .and(predicate::str::contains("mix two versions")),
+        );
+    let builds: Vec<String> =
+        serde_json::from_str(&std::fs::read_to_string(mixed.join("builds.json")).unwrap()).unwrap();
+    assert_eq!(builds.len(), 2, "{builds:?}");
+    assert_eq!(builds[1], "0123456789ab");
     // A missing shard is named; a shard given twice is a duplicate.
     Command::new(&bin)
         .arg("aggregate")

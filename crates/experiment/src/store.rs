@@ -119,14 +119,59 @@ pub fn other_builds_warning(dir: &Path) -> Result<Option<String>, StoreError> {
     }))
 }
 
+/// The builds that made the runs of the folders `dirs` (shards of one experiment), in
+/// order of first appearance, each with the folders that name it. Folders without a
+/// `builds.json` (written before builds were recorded) name none.
+pub fn builds_of(dirs: &[PathBuf]) -> Result<Vec<(String, Vec<PathBuf>)>, StoreError> {
+    let mut out: Vec<(String, Vec<PathBuf>)> = Vec::new();
+    for d in dirs {
+        for b in read_builds(d)? {
+            match out.iter_mut().find(|(known, _)| *known == b) {
+                Some((_, folders)) => folders.push(d.clone()),
+                None => out.push((b, vec![d.clone()])),
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// A warning for shards whose runs were made by more than one build, if so: merged, they
+/// may mix two versions of a method.
+#[must_use]
+pub fn mixed_builds_warning(builds: &[(String, Vec<PathBuf>)]) -> Option<String> {
+    (builds.len() > 1).then(|| {
+        let each: Vec<String> = builds
+            .iter()
+            .map(|(b, dirs)| {
+                let names: Vec<String> = dirs.iter().map(|d| d.display().to_string()).collect();
+                format!("build {b} ({})", names.join(", "))
+            })
+            .collect();
+        format!(
+            "the folders' runs were made by {}; if a method changed between these builds, the merged results mix two versions (re-run the shards of one build to keep them apart)",
+            each.join(" and ")
+        )
+    })
+}
+
+/// Writes `builds` (as [`builds_of`] gives them) as `dir`'s list, for a merged folder.
+pub fn write_builds(dir: &Path, builds: &[(String, Vec<PathBuf>)]) -> Result<(), StoreError> {
+    let list: Vec<String> = builds.iter().map(|(b, _)| b.clone()).collect();
+    write_build_list(dir, &list)
+}
+
+fn write_build_list(dir: &Path, list: &[String]) -> Result<(), StoreError> {
+    let path = dir.join(BUILDS_FILE);
+    let text = serde_json::to_string_pretty(list).expect("a list serialises");
+    std::fs::write(&path, text + "\n").map_err(io(&path))
+}
+
 /// Adds this build to `dir`'s list.
 fn record_build(dir: &Path) -> Result<(), StoreError> {
     let mut builds = read_builds(dir)?;
     if !builds.iter().any(|b| b == build_id()) {
         builds.push(build_id().to_owned());
-        let path = dir.join(BUILDS_FILE);
-        let text = serde_json::to_string_pretty(&builds).expect("a list serialises");
-        std::fs::write(&path, text + "\n").map_err(io(&path))?;
+        write_build_list(dir, &builds)?;
     }
     Ok(())
 }

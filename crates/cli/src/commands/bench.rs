@@ -407,9 +407,14 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
 pub fn run_aggregate(args: &AggregateArgs) -> Result<()> {
     super::out_folder::aggregate_folder(&args.out, &args.dirs)?;
     let (spec, records) = aggregate(&args.dirs)?;
+    let builds = swarmplan_experiment::store::builds_of(&args.dirs)?;
+    if let Some(warning) = swarmplan_experiment::store::mixed_builds_warning(&builds) {
+        eprintln!("warning: {warning}");
+    }
     let summary = summarize_records(spec.master_seed, &records);
     let text = serde_json::to_string_pretty(&spec)? + "\n";
     std::fs::write(args.out.join("experiment.json"), text)?;
+    swarmplan_experiment::store::write_builds(&args.out, &builds)?;
     eprintln!(
         "aggregate: {} runs from {} folders",
         records.len(),
