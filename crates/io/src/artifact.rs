@@ -35,6 +35,10 @@ pub enum ArtifactError {
     Parse { path: String, message: String },
     #[error("{path}: version {found}, this build reads version {RUN_ARTIFACT_VERSION}")]
     Version { path: String, found: u32 },
+    #[error(
+        "{path}: no `version` field (a whole number): not a run.json written by swarmplan `plan`"
+    )]
+    NoVersion { path: String },
 }
 
 /// One UAV in the report.
@@ -218,7 +222,9 @@ impl RunArtifact {
                 path: p.clone(),
                 message: e.to_string(),
             })?;
-        let found = version["version"].as_u64().unwrap_or(0);
+        let Some(found) = version["version"].as_u64() else {
+            return Err(ArtifactError::NoVersion { path: p });
+        };
         if found != u64::from(RUN_ARTIFACT_VERSION) {
             return Err(ArtifactError::Version {
                 path: p,
@@ -229,5 +235,29 @@ impl RunArtifact {
             path: p,
             message: e.to_string(),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn read_text(text: &str) -> String {
+        let dir = tempfile::tempdir().expect("a temporary folder");
+        let path = dir.path().join("run.json");
+        std::fs::write(&path, text).expect("written");
+        RunArtifact::read(&path)
+            .expect_err("not a run.json of this build")
+            .to_string()
+    }
+
+    #[test]
+    fn a_run_json_without_a_version_is_named_as_such_and_another_version_by_its_number() {
+        for text in ["{}", "[]", "{\"version\": \"1\"}"] {
+            let e = read_text(text);
+            assert!(e.contains("no `version` field"), "{text}: {e}");
+        }
+        let e = read_text("{\"version\": 7}");
+        assert!(e.contains("version 7, this build reads version"), "{e}");
     }
 }
