@@ -511,6 +511,12 @@ fn anytime_stops_at_the_first_feasible_plan_or_at_the_time_limit() {
         .assert()
         .code(2)
         .stderr(predicates::str::contains("--time-limit: expected seconds"));
+    // A huge number is echoed short, not as three hundred digits.
+    swarmplan()
+        .args(["plan", "--scenario", "tiny", "--time-limit", "1e300"])
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains("got 1e300\n"));
 }
 
 #[test]

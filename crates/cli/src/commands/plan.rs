@@ -298,7 +298,12 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     if let Some(t) = args.time_limit {
         anyhow::ensure!(
             t.is_finite() && t > 0.0 && t <= 1e7,
-            "--time-limit: expected seconds in (0, 1e7], got {t}"
+            "--time-limit: expected seconds in (0, 1e7], got {}",
+            if t.abs() >= 1e7 {
+                format!("{t:e}")
+            } else {
+                t.to_string()
+            }
         );
         // Truncation intended: milliseconds of a checked, bounded number of seconds.
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
