@@ -70,7 +70,11 @@ impl Problem {
                     Ok(b.project(v))
                 } else {
                     let at = row.map_or(format!("x[{j}]"), |i| format!("X[{i}, {j}]"));
-                    Err(bad(format!("{at}: expected a finite number, got {v}")))
+                    // numpy reads None as NaN, so a NaN may have been a None.
+                    let hint = if v.is_nan() { " (a NaN or a None)" } else { "" };
+                    Err(bad(format!(
+                        "{at}: expected a finite number, got {v}{hint}"
+                    )))
                 }
             })
             .collect()
