@@ -33,5 +33,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(planner::plan, m)?)?;
     m.add_function(wrap_pyfunction!(bench::bench, m)?)?;
     m.add_function(wrap_pyfunction!(scenario::scenarios, m)?)?;
+    m.add_function(wrap_pyfunction!(scenario::is_scenario_name, m)?)?;
     Ok(())
 }

@@ -40,3 +40,11 @@ pub fn load(scenario: &str, terrain: Option<PathBuf>, profile: Option<&str>) -> 
 pub fn scenarios() -> Vec<&'static str> {
     builtin_names()
 }
+
+/// Whether `name` loads as a name (built-in, generated or outside) rather than as a file:
+/// names take precedence, so a pickled problem keeps such a string as it is and makes
+/// only a file's path absolute.
+#[pyfunction]
+pub fn is_scenario_name(name: &str) -> bool {
+    swarmplan_io::scenario::is_scenario_name(name)
+}

@@ -102,8 +102,16 @@ class Problem:
         init: Optional[str] = None,
         profile: Optional[str] = None,
     ) -> None:
-        # Kept to pickle the problem (process pools) by building it again from them.
-        self._args = (os.fspath(scenario), _path(terrain), method, encoding, init, profile)
+        # Kept to pickle the problem (process pools) by building it again from them, with
+        # files as absolute paths: the unpickling process may run in another folder.
+        self._args = (
+            _pickled_scenario(os.fspath(scenario)),
+            None if terrain is None else os.path.abspath(os.fspath(terrain)),
+            method,
+            encoding,
+            init,
+            profile,
+        )
         self._p = _native.Problem(
             os.fspath(scenario), _path(terrain), method, encoding, init, profile
         )
@@ -263,6 +271,14 @@ class Problem:
             "agl": height,
             "dead_share": dead_share,
         }
+
+
+def _pickled_scenario(scenario: str) -> str:
+    """A scenario argument as a pickle keeps it: a name as it is (names load before
+    files), a file's path made absolute."""
+    if _native.is_scenario_name(scenario):
+        return scenario
+    return os.path.abspath(scenario)
 
 
 def _rebuild(scenario, terrain, method, encoding, init, profile) -> Problem:

@@ -125,3 +125,24 @@ def test_a_problem_pickles_for_process_pools():
     assert np.array_equal(p.evaluate(x)[0], q.evaluate(x)[0])
     assert (q.method, q.profile, q.dimension) == (p.method, p.profile, p.dimension)
     assert copy.deepcopy(p).name == p.name
+
+
+def test_a_pickled_problem_of_a_file_loads_from_another_folder(cli, tmp_path, monkeypatch):
+    import pickle
+
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    scenario = run_cli(cli, "scenario", "show", "tiny").stdout
+    (tmp_path / "a" / "mine.toml").write_text(scenario.replace('name = "tiny"', 'name = "mine"'))
+    monkeypatch.chdir(tmp_path / "a")
+    p = swarmplan.Problem("mine.toml")
+    named = pickle.dumps(swarmplan.Problem("tiny"))
+    data = pickle.dumps(p)
+    # Unpickled in another folder (as a process pool started elsewhere would): the file is
+    # found by its absolute path, and a built-in name stays a name.
+    monkeypatch.chdir(tmp_path / "b")
+    q = pickle.loads(data)
+    assert q.name == p.name == "mine"
+    x = p.sample_initial(2, 3)
+    assert np.array_equal(p.evaluate(x)[0], q.evaluate(x)[0])
+    assert pickle.loads(named).name == "tiny"
