@@ -363,11 +363,11 @@ impl Problem for PlanningProblem<'_> {
     /// the violations on its first leg (UAVs leaving the take-off zone together) and its
     /// energy violation while it waits (hovering spends energy). Assessed with a report, so
     /// the places come from the same checks as `swarmplan evaluate`'s.
-    fn hot_spots(&self, x: &[f64], block: usize, out: &mut Vec<f64>) {
+    fn hot_spots(&self, x: &[f64], block: usize, out: &mut Vec<f64>) -> bool {
         out.clear();
         let n = self.frame.n;
         if n == 0 || block >= self.world.uav_count() {
-            return;
+            return false;
         }
         let plan = self.encoding.decode(x);
         let assessed = assess(self.world, &plan, true);
@@ -401,6 +401,7 @@ impl Problem for PlanningProblem<'_> {
                 }
             }
         }
+        true
     }
 
     fn shifted_copy(

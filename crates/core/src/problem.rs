@@ -177,11 +177,13 @@ pub trait Problem: Sync {
     /// Weights over the sites of block `block`'s [nudges](Problem::nudge), by how much of
     /// `x`'s hard violation lies at each (a planning problem: per free waypoint of the UAV,
     /// the violations it or its pairs hold next to it), written into `out`; empty when
-    /// nothing is known (the default). It assesses `x`, so the [`super::optim::Evaluator`]
-    /// counts it as an evaluation.
-    fn hot_spots(&self, x: &[f64], block: usize, out: &mut Vec<f64>) {
+    /// nothing is known. Returns whether it assessed `x`, which the
+    /// [`super::optim::Evaluator`] then counts as an evaluation; the default knows nothing,
+    /// assesses nothing and returns false.
+    fn hot_spots(&self, x: &[f64], block: usize, out: &mut Vec<f64>) -> bool {
         let _ = (x, block);
         out.clear();
+        false
     }
 
     /// Block `donor`'s path of `x` made block `block`'s, shifted by a random offset of a

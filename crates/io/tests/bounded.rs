@@ -35,8 +35,8 @@ impl Problem for Full<'_> {
     ) -> bool {
         self.0.nudge(x, block, site, rng, out)
     }
-    fn hot_spots(&self, x: &[f64], block: usize, out: &mut Vec<f64>) {
-        self.0.hot_spots(x, block, out);
+    fn hot_spots(&self, x: &[f64], block: usize, out: &mut Vec<f64>) -> bool {
+        self.0.hot_spots(x, block, out)
     }
     fn evaluate_blocks(&self, x: &[f64], by_block: &mut Vec<f64>) -> Evaluation {
         self.0.evaluate_blocks(x, by_block)

@@ -1174,10 +1174,11 @@ mod tests {
             out.copy_from_slice(&x[3 * donor..3 * donor + 3]);
             true
         }
-        fn hot_spots(&self, _: &[f64], block: usize, out: &mut Vec<f64>) {
+        fn hot_spots(&self, _: &[f64], block: usize, out: &mut Vec<f64>) -> bool {
             self.spots.lock().expect("not poisoned")[block] += 1;
             out.clear();
             out.extend([0.0, 0.0, 1.5]);
+            true
         }
     }
 
@@ -1248,6 +1249,29 @@ mod tests {
             sites.iter().all(|s| s.is_none() || *s == Some(2)) && hot > 0 && hot < sites.len(),
             "{sites:?}"
         );
+    }
+
+    #[test]
+    fn a_problem_without_hot_spots_spends_no_evaluation_on_them() {
+        let run = |aimed_nudges: f64| {
+            let mut opt = Cooperative::new(CoopParams {
+                aimed_nudges,
+                ..CoopParams::DEFAULT
+            });
+            // A block in violation, so nudges (and their aim) are asked for, but neither
+            // nudges nor hot spots of its own.
+            let p = CountsMoves::new().inner;
+            let mut trace = Vec::new();
+            let out = solve(
+                &p,
+                &mut opt,
+                Budget::evaluations(2000),
+                &mut rng_from_seed(4),
+                &mut |s| trace.push((s.evaluations, s.best_cost.to_bits())),
+            );
+            (out.best_x, trace)
+        };
+        assert_eq!(run(1.0), run(0.0));
     }
 
     #[test]

@@ -76,10 +76,16 @@ impl<'a> Evaluator<'a> {
     }
 
     /// Where block `block`'s violations of `x` lie, as weights over its nudge sites
-    /// ([`Problem::hot_spots`]); counted as one evaluation, `None` when the budget is spent.
+    /// ([`Problem::hot_spots`]); counted as one evaluation when the problem assessed `x` for
+    /// it, `None` (nothing asked) when the budget is spent.
     pub fn hot_spots(&mut self, x: &[f64], block: usize, out: &mut Vec<f64>) -> Option<()> {
-        self.admit(x)?;
-        self.problem.hot_spots(x, block, out);
+        if self.limit.is_some_and(|l| self.count >= l) {
+            self.exhausted = true;
+            return None;
+        }
+        if self.problem.hot_spots(x, block, out) {
+            self.count += 1;
+        }
         Some(())
     }
 
