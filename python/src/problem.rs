@@ -71,7 +71,11 @@ impl Problem {
                 } else {
                     let at = row.map_or(format!("x[{j}]"), |i| format!("X[{i}, {j}]"));
                     // numpy reads None as NaN, so a NaN may have been a None.
-                    let hint = if v.is_nan() { " (a NaN or a None)" } else { "" };
+                    let hint = if v.is_nan() {
+                        " (None reads as NaN)"
+                    } else {
+                        ""
+                    };
                     Err(bad(format!(
                         "{at}: expected a finite number, got {v}{hint}"
                     )))

@@ -57,10 +57,10 @@ def test_bad_batches_name_the_row_and_column():
     assert "expected 24 columns" in raised(p.evaluate, np.zeros((3, 5)))
     X = p.sample_initial(2, 1)
     X[1, 4] = np.nan
-    assert "X[1, 4]: expected a finite number, got NaN (a NaN or a None)" in raised(p.evaluate, X)
+    assert "X[1, 4]: expected a finite number, got NaN (None reads as NaN)" in raised(p.evaluate, X)
     row = [float(v) for v in X[0]]
     row[2] = None
-    assert "expected a finite number, got NaN (a NaN or a None)" in raised(p.evaluate, row)
+    assert "expected a finite number, got NaN (None reads as NaN)" in raised(p.evaluate, row)
     assert "expected shape" in raised(p.evaluate, np.zeros((2, 2, 2)))
     assert "x: expected 24 values" in raised(p.assess, np.zeros(3))
     assert "count: expected at least 1" in raised(p.sample_initial, 0, 1)

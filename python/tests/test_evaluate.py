@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -135,7 +136,7 @@ def test_a_pickled_problem_of_a_file_loads_from_another_folder(cli, tmp_path, mo
     scenario = run_cli(cli, "scenario", "show", "tiny").stdout
     (tmp_path / "a" / "mine.toml").write_text(scenario.replace('name = "tiny"', 'name = "mine"'))
     monkeypatch.chdir(tmp_path / "a")
-    p = swarmplan.Problem("mine.toml")
+    p = swarmplan.Problem(Path("mine.toml"))
     named = pickle.dumps(swarmplan.Problem("tiny"))
     data = pickle.dumps(p)
     # Unpickled in another folder (as a process pool started elsewhere would): the file is

@@ -304,12 +304,37 @@ fn shards_aggregate_to_the_unsharded_summary() {
         .stderr(
             predicate::str::contains("build 0123456789ab (")
                 .and(predicate::str::contains("s3"))
-                .and(predicate::str::contains("mix two versions")),
+                .and(predicate::str::contains("mix its versions")),
         );
     let builds: Vec<String> =
         serde_json::from_str(&std::fs::read_to_string(mixed.join("builds.json")).unwrap()).unwrap();
     assert_eq!(builds.len(), 2, "{builds:?}");
     assert_eq!(builds[1], "0123456789ab");
+    // A shard of a build that recorded none (older) is named too.
+    std::fs::remove_file(shards[2].join("builds.json")).unwrap();
+    Command::new(&bin)
+        .arg("aggregate")
+        .args(&shards)
+        .arg("--out")
+        .arg(dir.path().join("older"))
+        .assert()
+        .success()
+        .stderr(
+            predicate::str::contains("builds not recorded (")
+                .and(predicate::str::contains("s3: no builds.json")),
+        );
+    // A malformed builds.json is refused before the out folder is made.
+    std::fs::write(shards[2].join("builds.json"), "not json").unwrap();
+    Command::new(&bin)
+        .arg("aggregate")
+        .args(&shards)
+        .arg("--out")
+        .arg(dir.path().join("never"))
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("builds.json"));
+    assert!(!dir.path().join("never").exists());
+    std::fs::remove_file(shards[2].join("builds.json")).unwrap();
     // A missing shard is named; a shard given twice is a duplicate.
     Command::new(&bin)
         .arg("aggregate")

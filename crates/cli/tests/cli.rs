@@ -517,6 +517,11 @@ fn anytime_stops_at_the_first_feasible_plan_or_at_the_time_limit() {
         .assert()
         .code(2)
         .stderr(predicates::str::contains("got 1e300\n"));
+    swarmplan()
+        .args(["plan", "--scenario", "tiny", "--time-limit", "-1e-300"])
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains("got -1e-300\n"));
 }
 
 #[test]

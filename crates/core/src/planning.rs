@@ -356,9 +356,12 @@ impl Problem for PlanningProblem<'_> {
     }
 
     /// Per free waypoint of UAV `block`, the hard violations of the plan that it or a pair
-    /// it belongs to holds nearest that waypoint: each violation's measure (1 + amount /
+    /// it belongs to holds next to that waypoint: each violation's measure (1 + amount /
     /// scale) goes to the two ends of the waypoint segment nearest its place (horizontally;
-    /// a start or goal end gets nothing). Violations without a place (energy, speed) add
+    /// a start or goal end gets nothing). A violation placed at a waypoint (a turn, a
+    /// climb) is as near the segments on both sides of it, and goes to the earlier one:
+    /// mapping each UAV's own violations by their index instead was measured and lost
+    /// (docs/results.md, "Aimed nudges"). Violations without a place (energy, speed) add
     /// nothing there. When departure delays are free one more site, the UAV's delay, takes
     /// the violations on its first leg (UAVs leaving the take-off zone together) and its
     /// energy violation while it waits (hovering spends energy). Assessed with a report, so

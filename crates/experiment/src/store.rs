@@ -119,45 +119,68 @@ pub fn other_builds_warning(dir: &Path) -> Result<Option<String>, StoreError> {
     }))
 }
 
-/// The builds that made the runs of the folders `dirs` (shards of one experiment), in
-/// order of first appearance, each with the folders that name it. Folders without a
-/// `builds.json` (written before builds were recorded) name none.
-pub fn builds_of(dirs: &[PathBuf]) -> Result<Vec<(String, Vec<PathBuf>)>, StoreError> {
-    let mut out: Vec<(String, Vec<PathBuf>)> = Vec::new();
-    for d in dirs {
-        for b in read_builds(d)? {
-            match out.iter_mut().find(|(known, _)| *known == b) {
-                Some((_, folders)) => folders.push(d.clone()),
-                None => out.push((b, vec![d.clone()])),
+/// The builds that made the runs of shard folders, as their `builds.json` files say.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct ShardBuilds {
+    /// Each build, in order of first appearance, with the folders that name it.
+    pub builds: Vec<(String, Vec<PathBuf>)>,
+    /// Folders without a `builds.json` (written before builds were recorded).
+    pub unrecorded: Vec<PathBuf>,
+}
+
+impl ShardBuilds {
+    /// Reads the `builds.json` of each of `dirs`.
+    pub fn of(dirs: &[PathBuf]) -> Result<Self, StoreError> {
+        let mut out = Self::default();
+        for d in dirs {
+            if !d.join(BUILDS_FILE).is_file() {
+                out.unrecorded.push(d.clone());
+                continue;
+            }
+            for b in read_builds(d)? {
+                match out.builds.iter_mut().find(|(known, _)| *known == b) {
+                    Some((_, folders)) => folders.push(d.clone()),
+                    None => out.builds.push((b, vec![d.clone()])),
+                }
             }
         }
+        Ok(out)
     }
-    Ok(out)
-}
 
-/// A warning for shards whose runs were made by more than one build, if so: merged, they
-/// may mix two versions of a method.
-#[must_use]
-pub fn mixed_builds_warning(builds: &[(String, Vec<PathBuf>)]) -> Option<String> {
-    (builds.len() > 1).then(|| {
-        let each: Vec<String> = builds
-            .iter()
-            .map(|(b, dirs)| {
-                let names: Vec<String> = dirs.iter().map(|d| d.display().to_string()).collect();
-                format!("build {b} ({})", names.join(", "))
-            })
-            .collect();
-        format!(
-            "the folders' runs were made by {}; if a method changed between these builds, the merged results mix two versions (re-run the shards of one build to keep them apart)",
-            each.join(" and ")
-        )
-    })
-}
+    /// A warning when the runs were made by more than one build, or by a recorded build and
+    /// folders that record none: merged, they may mix versions of a method.
+    #[must_use]
+    pub fn warning(&self) -> Option<String> {
+        let mixed =
+            self.builds.len() > 1 || (!self.builds.is_empty() && !self.unrecorded.is_empty());
+        mixed.then(|| {
+            let names = |dirs: &[PathBuf]| -> String {
+                let v: Vec<String> = dirs.iter().map(|d| d.display().to_string()).collect();
+                v.join(", ")
+            };
+            let mut each: Vec<String> = self
+                .builds
+                .iter()
+                .map(|(b, dirs)| format!("build {b} ({})", names(dirs)))
+                .collect();
+            if !self.unrecorded.is_empty() {
+                each.push(format!(
+                    "builds not recorded ({}: no builds.json)",
+                    names(&self.unrecorded)
+                ));
+            }
+            format!(
+                "the folders' runs were made by {}; if a method changed between them, the merged results mix its versions (re-run the shards with one build to keep them apart)",
+                each.join(" and ")
+            )
+        })
+    }
 
-/// Writes `builds` (as [`builds_of`] gives them) as `dir`'s list, for a merged folder.
-pub fn write_builds(dir: &Path, builds: &[(String, Vec<PathBuf>)]) -> Result<(), StoreError> {
-    let list: Vec<String> = builds.iter().map(|(b, _)| b.clone()).collect();
-    write_build_list(dir, &list)
+    /// Writes the recorded builds as `dir`'s list, for the merged folder.
+    pub fn write(&self, dir: &Path) -> Result<(), StoreError> {
+        let list: Vec<String> = self.builds.iter().map(|(b, _)| b.clone()).collect();
+        write_build_list(dir, &list)
+    }
 }
 
 fn write_build_list(dir: &Path, list: &[String]) -> Result<(), StoreError> {

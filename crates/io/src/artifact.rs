@@ -35,10 +35,10 @@ pub enum ArtifactError {
     Parse { path: String, message: String },
     #[error("{path}: version {found}, this build reads version {RUN_ARTIFACT_VERSION}")]
     Version { path: String, found: u32 },
-    #[error(
-        "{path}: no `version` field (a whole number): not a run.json written by swarmplan `plan`"
-    )]
+    #[error("{path}: no `version` field: not a run.json of swarmplan `plan` (or one from before run.json had versions; plan again to write one)")]
     NoVersion { path: String },
+    #[error("{path}: `version` is {found}, expected a whole number (this build reads version {RUN_ARTIFACT_VERSION})")]
+    BadVersion { path: String, found: String },
 }
 
 /// One UAV in the report.
@@ -223,7 +223,13 @@ impl RunArtifact {
                 message: e.to_string(),
             })?;
         let Some(found) = version["version"].as_u64() else {
-            return Err(ArtifactError::NoVersion { path: p });
+            return Err(match version.get("version") {
+                None => ArtifactError::NoVersion { path: p },
+                Some(v) => ArtifactError::BadVersion {
+                    path: p,
+                    found: v.to_string(),
+                },
+            });
         };
         if found != u64::from(RUN_ARTIFACT_VERSION) {
             return Err(ArtifactError::Version {
@@ -253,9 +259,17 @@ mod tests {
 
     #[test]
     fn a_run_json_without_a_version_is_named_as_such_and_another_version_by_its_number() {
-        for text in ["{}", "[]", "{\"version\": \"1\"}"] {
+        for text in ["{}", "[]"] {
             let e = read_text(text);
             assert!(e.contains("no `version` field"), "{text}: {e}");
+        }
+        for text in [
+            "{\"version\": \"1\"}",
+            "{\"version\": 1.5}",
+            "{\"version\": -1}",
+        ] {
+            let e = read_text(text);
+            assert!(e.contains("expected a whole number"), "{text}: {e}");
         }
         let e = read_text("{\"version\": 7}");
         assert!(e.contains("version 7, this build reads version"), "{e}");

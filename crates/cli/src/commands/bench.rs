@@ -405,16 +405,17 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
 }
 
 pub fn run_aggregate(args: &AggregateArgs) -> Result<()> {
+    // Read before the out folder is made, so a malformed builds.json leaves nothing behind.
+    let builds = swarmplan_experiment::store::ShardBuilds::of(&args.dirs)?;
     super::out_folder::aggregate_folder(&args.out, &args.dirs)?;
     let (spec, records) = aggregate(&args.dirs)?;
-    let builds = swarmplan_experiment::store::builds_of(&args.dirs)?;
-    if let Some(warning) = swarmplan_experiment::store::mixed_builds_warning(&builds) {
+    if let Some(warning) = builds.warning() {
         eprintln!("warning: {warning}");
     }
     let summary = summarize_records(spec.master_seed, &records);
     let text = serde_json::to_string_pretty(&spec)? + "\n";
     std::fs::write(args.out.join("experiment.json"), text)?;
-    swarmplan_experiment::store::write_builds(&args.out, &builds)?;
+    builds.write(&args.out)?;
     eprintln!(
         "aggregate: {} runs from {} folders",
         records.len(),

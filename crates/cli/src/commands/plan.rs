@@ -299,7 +299,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         anyhow::ensure!(
             t.is_finite() && t > 0.0 && t <= 1e7,
             "--time-limit: expected seconds in (0, 1e7], got {}",
-            if t.abs() >= 1e7 {
+            if t.abs() >= 1e7 || (t != 0.0 && t.abs() < 1e-4) {
                 format!("{t:e}")
             } else {
                 t.to_string()

@@ -176,11 +176,12 @@ pub struct CoopParams {
     /// docs/results.md ("Shifted copies").
     pub shifted_copies: bool,
     /// Share of the nudges aimed at where the block's violations are
-    /// ([`Evaluator::hot_spots`]: in a planning problem the free waypoints nearest the
-    /// places of the UAV's violations, drawn in proportion to their measure); the rest, and
-    /// every nudge when no violation has a place, move a waypoint drawn uniformly. Finding
-    /// the places assesses the context once per visit, counted as an evaluation. 0: no
-    /// aim, and neither that evaluation nor a random draw for it.
+    /// ([`Evaluator::hot_spots`]: in a planning problem the free waypoints next to the
+    /// UAV's violations, and its departure delay when delays are free, drawn in proportion
+    /// to their measure); the rest, and every nudge when the hot spots weigh nothing, move a
+    /// waypoint drawn uniformly. Finding the hot spots assesses the context once per visit,
+    /// counted as an evaluation. 0: no aim, and neither that evaluation nor a random draw
+    /// for it.
     pub aimed_nudges: f64,
 }
 
@@ -1115,6 +1116,8 @@ mod tests {
         copies: std::sync::Mutex<Vec<(usize, usize)>>,
         spots: std::sync::Mutex<Vec<usize>>,
         sites: std::sync::Mutex<Vec<Option<usize>>>,
+        /// Calls of `evaluate` and `evaluate_blocks`.
+        evaluated: std::sync::atomic::AtomicU64,
     }
 
     impl CountsMoves {
@@ -1129,6 +1132,7 @@ mod tests {
                 copies: std::sync::Mutex::new(Vec::new()),
                 spots: std::sync::Mutex::new(vec![0; 4]),
                 sites: std::sync::Mutex::new(Vec::new()),
+                evaluated: 0.into(),
             }
         }
     }
@@ -1138,9 +1142,13 @@ mod tests {
             self.inner.bounds()
         }
         fn evaluate(&self, x: &[f64]) -> Evaluation {
+            self.evaluated
+                .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
             self.inner.evaluate(x)
         }
         fn evaluate_blocks(&self, x: &[f64], by_block: &mut Vec<f64>) -> Evaluation {
+            self.evaluated
+                .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
             self.inner.evaluate_blocks(x, by_block)
         }
         fn block_size(&self) -> usize {
@@ -1229,6 +1237,12 @@ mod tests {
             assert_eq!(out.evaluations, 3000);
             let asked = p.asked.into_inner().expect("not poisoned");
             let spots = p.spots.into_inner().expect("not poisoned");
+            let looks: usize = spots.iter().sum();
+            assert_eq!(
+                p.evaluated.into_inner() + looks as u64,
+                out.evaluations,
+                "every evaluation made, and every look, counted once"
+            );
             (asked, spots, p.sites.into_inner().expect("not poisoned"))
         };
         let (asked, spots, sites) = run(0.0);
