@@ -102,8 +102,12 @@ class Problem:
         init: Optional[str] = None,
         profile: Optional[str] = None,
     ) -> None:
+        self._p = _native.Problem(
+            os.fspath(scenario), _path(terrain), method, encoding, init, profile
+        )
         # Kept to pickle the problem (process pools) by building it again from them, with
-        # files as absolute paths: the unpickling process may run in another folder.
+        # files as absolute paths: the unpickling process may run in another folder. Made
+        # after the load, so a bad argument is reported as the load reports it.
         self._args = (
             _pickled_scenario(os.fspath(scenario)),
             None if terrain is None else os.path.abspath(os.fspath(terrain)),
@@ -111,9 +115,6 @@ class Problem:
             encoding,
             init,
             profile,
-        )
-        self._p = _native.Problem(
-            os.fspath(scenario), _path(terrain), method, encoding, init, profile
         )
         lo, hi, periodic = self._p.bounds()
         self._lower: np.ndarray = lo

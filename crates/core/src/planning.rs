@@ -154,6 +154,14 @@ impl<'w> PlanningProblem<'w> {
         x
     }
 
+    /// Block `block` of `plan`'s encoding, written into `out` (the moves of
+    /// [`Problem::nudge`] and [`Problem::shifted_copy`] edit a decoded plan).
+    fn write_block(&self, plan: &Plan, block: usize, out: &mut [f64]) {
+        let size = self.block_size();
+        let encoded = self.encode(plan);
+        out.copy_from_slice(&encoded[block * size..(block + 1) * size]);
+    }
+
     #[must_use]
     pub fn world(&self) -> &World {
         self.world
@@ -329,8 +337,7 @@ impl Problem for PlanningProblem<'_> {
             let delay = &mut plan.delays[block];
             *delay =
                 (*delay + NUDGE_DELAY_SHARE * timing.max_delay * d).clamp(0.0, timing.max_delay);
-            let encoded = self.encode(&plan);
-            out.copy_from_slice(&encoded[block * size..(block + 1) * size]);
+            self.write_block(&plan, block, out);
             return true;
         }
         let k = match site {
@@ -350,8 +357,7 @@ impl Problem for PlanningProblem<'_> {
         w.x = (w.x + NUDGE_SEPARATIONS * sep * dx).clamp(f.x[0], f.x[1]);
         w.y = (w.y + NUDGE_SEPARATIONS * sep * dy).clamp(f.y[0], f.y[1]);
         w.z = (w.z + sep * dz).clamp(f.z[0], f.z[1]);
-        let encoded = self.encode(&plan);
-        out.copy_from_slice(&encoded[block * size..(block + 1) * size]);
+        self.write_block(&plan, block, out);
         true
     }
 
@@ -359,9 +365,9 @@ impl Problem for PlanningProblem<'_> {
     /// it belongs to holds next to that waypoint: each violation's measure (1 + amount /
     /// scale) goes to the two ends of the waypoint segment nearest its place (horizontally;
     /// a start or goal end gets nothing). A violation placed at a waypoint (a turn, a
-    /// climb) is as near the segments on both sides of it, and goes to the earlier one:
-    /// mapping each UAV's own violations by their index instead was measured and lost
-    /// (docs/results.md, "Aimed nudges"). Violations without a place (energy, speed) add
+    /// climb) is as near the segments on both sides of it, and goes to either, as the
+    /// rounding of [`nearest_segment`] falls: mapping each UAV's own violations by their
+    /// index instead was measured and lost (docs/results.md, "Aimed nudges"). Violations without a place (energy, speed) add
     /// nothing there. When departure delays are free one more site, the UAV's delay, takes
     /// the violations on its first leg (UAVs leaving the take-off zone together) and its
     /// energy violation while it waits (hovering spends energy). Assessed with a report, so
@@ -435,8 +441,7 @@ impl Problem for PlanningProblem<'_> {
             w.y = (s.y + oy).clamp(f.y[0], f.y[1]);
             w.z = (s.z + oz).clamp(f.z[0], f.z[1]);
         }
-        let encoded = self.encode(&plan);
-        out.copy_from_slice(&encoded[block * size..(block + 1) * size]);
+        self.write_block(&plan, block, out);
         true
     }
 
@@ -457,7 +462,9 @@ impl Problem for PlanningProblem<'_> {
 }
 
 /// Index of the segment (k joins points k and k + 1) of the polyline through `points`
-/// nearest `p` in the plane; 0 for fewer than two points.
+/// nearest `p` in the plane; 0 for fewer than two points. Distances are measured to the
+/// projection of `p` clamped onto each segment, so a point at a shared waypoint is at 0
+/// from the later segment and at a rounding error (or 0) from the earlier one.
 fn nearest_segment(points: impl Iterator<Item = (f64, f64)>, p: (f64, f64)) -> usize {
     let mut best = (f64::INFINITY, 0);
     let mut prev: Option<(f64, f64)> = None;
