@@ -503,6 +503,23 @@ fn the_profile_is_named_in_records_and_the_summary() {
         .assert()
         .code(2)
         .stderr(predicate::str::contains("expected `strict` or `paper`"));
+    // A scenario that does not load, or a bad shard, is refused before the folder is made.
+    let dir = tempfile::tempdir().unwrap();
+    for extra in [
+        &["--scenarios", "no-such-scenario"][..],
+        &["--shard", "3/2"][..],
+    ] {
+        let out = dir.path().join("never");
+        Command::cargo_bin("swarmplan")
+            .unwrap()
+            .args(["bench", "--methods", "pso"])
+            .args(extra)
+            .arg("--out")
+            .arg(&out)
+            .assert()
+            .code(2);
+        assert!(!out.exists(), "{extra:?} left {}", out.display());
+    }
 }
 
 #[test]

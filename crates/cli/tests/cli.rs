@@ -151,8 +151,8 @@ fn evaluate_refuses_a_plan_made_for_other_terrain_or_another_scenario() {
 }
 
 #[test]
-fn same_seed_gives_the_same_plan() {
-    let run = || {
+fn same_seed_gives_the_same_plan_on_any_number_of_threads() {
+    let run = |threads: &str| {
         let dir = tempfile::tempdir().unwrap();
         let out = swarmplan()
             .args([
@@ -166,6 +166,8 @@ fn same_seed_gives_the_same_plan() {
                 "--seed",
                 "3",
                 "--json",
+                "--threads",
+                threads,
                 "--out",
             ])
             .arg(dir.path())
@@ -176,7 +178,17 @@ fn same_seed_gives_the_same_plan() {
         v.as_object_mut().unwrap().remove("files");
         v
     };
-    assert_eq!(run(), run());
+    let one = run("1");
+    assert_eq!(one, run("1"));
+    assert_eq!(one, run("3"));
+    assert_eq!(one, run("0"));
+    swarmplan()
+        .args(["plan", "--threads", "5000"])
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains(
+            "expected 0 (one per core) to 4096",
+        ));
 }
 
 #[test]
@@ -506,11 +518,15 @@ fn anytime_stops_at_the_first_feasible_plan_or_at_the_time_limit() {
     let b = json(&out.get_output().stdout);
     assert_eq!(b["termination"], "time-limit");
     assert!(String::from_utf8_lossy(&out.get_output().stderr).contains("not reproducible"));
+    // Refused before an output folder is chosen: nothing is left behind.
+    let cwd = tempfile::tempdir().unwrap();
     swarmplan()
+        .current_dir(cwd.path())
         .args(["plan", "--scenario", "tiny", "--time-limit", "-1"])
         .assert()
         .code(2)
         .stderr(predicates::str::contains("--time-limit: expected seconds"));
+    assert_eq!(std::fs::read_dir(cwd.path()).unwrap().count(), 0);
     // A huge number is echoed short, not as three hundred digits.
     swarmplan()
         .args(["plan", "--scenario", "tiny", "--time-limit", "1e300"])

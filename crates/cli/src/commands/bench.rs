@@ -301,13 +301,14 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
         "--threads: expected 0 (one per core) or at most {MAX_THREADS}, got {}",
         args.threads
     );
-    super::out_folder::bench_folder(&args.out)?;
-    // Scenarios no plan can satisfy are said once, before the runs start.
+    // Scenarios no plan can satisfy are said once, before the runs start; a scenario that
+    // does not load, or a bad --shard, is said before the folder is made.
     for name in &spec.scenarios {
         let loaded = swarmplan_io::scenario::load_spec(name)?;
         super::warn_unreachable(&loaded.origin, &loaded.spec);
     }
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?;
+    super::out_folder::bench_folder(&args.out)?;
     // Ctrl-C stops the process itself: the records written stay, `--resume` goes on.
     let opts = RunnerOptions {
         threads: args.threads,
@@ -405,10 +406,11 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
 }
 
 pub fn run_aggregate(args: &AggregateArgs) -> Result<()> {
-    // Read before the out folder is made, so a malformed builds.json leaves nothing behind.
+    // Read before the out folder is made, so a malformed builds.json or shards that do not
+    // belong together leave nothing behind.
     let builds = swarmplan_experiment::store::ShardBuilds::of(&args.dirs)?;
-    super::out_folder::aggregate_folder(&args.out, &args.dirs)?;
     let (spec, records) = aggregate(&args.dirs)?;
+    super::out_folder::aggregate_folder(&args.out, &args.dirs)?;
     if let Some(warning) = builds.warning() {
         eprintln!("warning: {warning}");
     }

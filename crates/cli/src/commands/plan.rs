@@ -76,6 +76,28 @@ pub struct PlanArgs {
     /// them together), and every attempt's seed is printed and stored in run.json.
     #[arg(long, default_value_t = 1, value_parser = parse_attempts, allow_negative_numbers = true)]
     pub attempts: usize,
+    /// Worker threads evaluating a swarm (default 0: one per core, or `RAYON_NUM_THREADS`).
+    /// The plan is the same bits for any number (docs/performance.md, "Parallel
+    /// evaluation").
+    #[arg(long, default_value_t = 0, value_parser = parse_threads)]
+    pub threads: usize,
+}
+
+/// Most worker threads `plan` starts.
+const MAX_THREADS: usize = 4096;
+
+/// `--threads`: 0 (one per core) to [`MAX_THREADS`].
+fn parse_threads(s: &str) -> Result<usize, String> {
+    let n: usize = s.parse().map_err(|_| {
+        format!("expected a whole number, 0 (one per core) to {MAX_THREADS}, got `{s}`")
+    })?;
+    if n <= MAX_THREADS {
+        Ok(n)
+    } else {
+        Err(format!(
+            "expected 0 (one per core) to {MAX_THREADS}, got {n}"
+        ))
+    }
 }
 
 /// `--attempts`: 1 to [`MAX_ATTEMPTS`].
@@ -281,8 +303,6 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             )
         })
         .transpose()?;
-    let out = super::out_folder::plan_folder(&args.out, args.force)?;
-    let out = out.as_path();
     let method = args.method.with(args.encoding, args.init);
     let req = RunRequest {
         method,
@@ -311,6 +331,17 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         req.budget.time_limit_ms = Some(ms);
     }
     req.budget.until_feasible = args.until_feasible;
+    // Every argument is checked before the folder is chosen: a bad one leaves no out-2.
+    let pool = (args.threads > 0)
+        .then(|| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(args.threads)
+                .build()
+                .with_context(|| format!("--threads: cannot start {} threads", args.threads))
+        })
+        .transpose()?;
+    let out = super::out_folder::plan_folder(&args.out, args.force)?;
+    let out = out.as_path();
     if !args.json {
         eprintln!(
             "planning {} with {} ({} on the {} encoding, {} init; seed {}, budget {} iterations / {} evaluations, population {}{})",
@@ -334,38 +365,49 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             }
         );
     }
-    let progress =
-        std::cell::RefCell::new(Progress::new(&req.budget, world.uav_count(), args.json));
+    // A mutex, not a cell: the run may go to the --threads pool.
+    let progress = std::sync::Mutex::new(Progress::new(&req.budget, world.uav_count(), args.json));
+    let progress = || {
+        progress
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    };
     let mut current = 1;
     let of = args.attempts;
-    let attempts = run_attempts(
-        &world,
-        &req,
-        args.attempts,
-        &mut |attempt, r| {
-            let mut p = progress.borrow_mut();
-            if attempt != current {
-                *p = Progress::new(&req.budget, world.uav_count(), args.json);
-                current = attempt;
-            }
-            p.update(r);
-        },
-        &mut |a| {
-            if of > 1 && !args.json {
-                progress.borrow().finish();
-                let verdict = if a.feasible {
-                    "feasible".to_string()
-                } else {
-                    format!("INFEASIBLE ({} violations)", a.violations)
-                };
-                eprintln!(
-                    "attempt {} of {of}, seed {}: {verdict} after {} evaluations, {:.1} s",
-                    a.attempt, a.seed, a.evaluations, a.seconds
-                );
-            }
-        },
-    );
-    progress.borrow().finish();
+    let mut run = || {
+        run_attempts(
+            &world,
+            &req,
+            args.attempts,
+            &mut |attempt, r| {
+                let mut p = progress();
+                if attempt != current {
+                    *p = Progress::new(&req.budget, world.uav_count(), args.json);
+                    current = attempt;
+                }
+                p.update(r);
+            },
+            &mut |a| {
+                if of > 1 && !args.json {
+                    progress().finish();
+                    let verdict = if a.feasible {
+                        "feasible".to_string()
+                    } else {
+                        format!("INFEASIBLE ({} violations)", a.violations)
+                    };
+                    eprintln!(
+                        "attempt {} of {of}, seed {}: {verdict} after {} evaluations, {:.1} s",
+                        a.attempt, a.seed, a.evaluations, a.seconds
+                    );
+                }
+            },
+        )
+    };
+    let attempts = match &pool {
+        Some(pool) => pool.install(run),
+        None => run(),
+    };
+    progress().finish();
     let chosen = attempts.chosen();
     let (result, uav_trace) = (attempts.result, attempts.uav_trace);
     if result.outcome.termination == swarmplan_core::optim::Termination::TimeLimit {
