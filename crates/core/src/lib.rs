@@ -27,5 +27,6 @@ pub mod rng;
 pub mod run;
 pub mod timing;
 pub mod world;
+pub mod zone_slot;
 
 pub use glam::DVec3;

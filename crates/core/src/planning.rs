@@ -15,6 +15,7 @@ use crate::plan::Plan;
 use crate::problem::{fill_uniform, Bound, Evaluation, Problem};
 use crate::rng::Rng;
 use crate::world::World;
+use crate::zone_slot;
 use rand_distr::{Distribution, StandardNormal};
 
 /// A plan that is not of the shape an encoding decodes to.
@@ -50,6 +51,11 @@ pub const NUDGE_SEPARATIONS: f64 = 2.0;
 /// A nudge of a departure delay: the standard deviation of its Gaussian move, as a share of
 /// `timing.max_delay`.
 pub const NUDGE_DELAY_SHARE: f64 = 0.25;
+
+/// Share of the nudges of a UAV's first or last free waypoint that are zone moves
+/// ([`zone_slot`]) when another UAV shares that start zone (or, always, UGV0's): 1, as
+/// measured (docs/results.md, "Zone moves"); the rest are Gaussian nudges.
+pub const ZONE_MOVE_SHARE: f64 = 1.0;
 
 /// Horizontal offset of a shifted copy ([`Problem::shifted_copy`]), in separation
 /// distances, drawn uniformly from this range.
@@ -208,6 +214,46 @@ impl PlanningProblem<'_> {
 
     /// A pace uniform in the scenario's range when it is free (no draw otherwise, so runs
     /// on a fixed pace keep their random streams).
+    /// A *zone move* ([`zone_slot`]): UAV `block`'s first (`at_start`) or last free
+    /// waypoint placed between [`zone_slot::SLOT_DISTANCE`] zone radii from its start (or
+    /// UGV0), at the bearing nearest its own that is clear of the other UAVs' there (its
+    /// own if clear), at a height drawn uniformly in the altitude band. False (nothing
+    /// changed) when no other UAV's start (or goal) is within the zone of its own.
+    fn zone_move(&self, plan: &mut Plan, block: usize, at_start: bool, rng: &mut Rng) -> bool {
+        let timing = &self.world.spec.timing;
+        let f = &self.frame;
+        let (n, zone) = (f.n, timing.zone_radius);
+        if n == 0 || zone <= 0.0 || block >= plan.uavs.len() {
+            return false;
+        }
+        let k = if at_start { 1 } else { n };
+        let centre_of = |u: usize| {
+            if at_start {
+                plan.uavs[u].waypoints[0]
+            } else {
+                self.world.goal
+            }
+        };
+        let centre = centre_of(block);
+        let others: Vec<f64> = (0..plan.uavs.len())
+            .filter(|&u| u != block && centre_of(u).truncate().distance(centre.truncate()) <= zone)
+            .map(|u| zone_slot::bearing(centre, plan.uavs[u].waypoints[k]))
+            .collect();
+        if others.is_empty() {
+            return false;
+        }
+        let own = zone_slot::bearing(centre, plan.uavs[block].waypoints[k]);
+        let gap = zone_slot::SLOT_MARGIN * zone_slot::min_angle(timing.separation, zone);
+        let to = zone_slot::clear_bearing(own, &others, gap, rng).unwrap_or(own);
+        let z = f.z[0] + (f.z[1] - f.z[0]) * rand::Rng::random::<f64>(rng);
+        let [lo, hi] = zone_slot::SLOT_DISTANCE;
+        let distance = zone * (lo + (hi - lo) * rand::Rng::random::<f64>(rng));
+        let p = zone_slot::at_bearing(centre, to, distance, z);
+        plan.uavs[block].waypoints[k] =
+            glam::DVec3::new(p.x.clamp(f.x[0], f.x[1]), p.y.clamp(f.y[0], f.y[1]), z);
+        true
+    }
+
     fn draw_pace(&self, rng: &mut Rng, plan: &mut Plan) {
         let [lo, hi] = self.world.spec.timing.pace;
         if self.world.spec.timing.pace_is_free() {
@@ -316,7 +362,9 @@ impl Problem for PlanningProblem<'_> {
     /// vertically, clamped into the map box and the altitude band; the plan is then encoded
     /// again, so in a motion encoding only the moves into and out of that waypoint change.
     /// When departure delays are free, site n (after the n free waypoints) is the UAV's
-    /// delay, moved by a Gaussian of [`NUDGE_DELAY_SHARE`] of `timing.max_delay`.
+    /// delay, moved by a Gaussian of [`NUDGE_DELAY_SHARE`] of `timing.max_delay`. A nudge
+    /// of the first or last free waypoint of a UAV that shares that zone with another is a
+    /// zone move instead (`zone_move`, in a share [`ZONE_MOVE_SHARE`] of them).
     fn nudge(
         &self,
         x: &[f64],
@@ -344,6 +392,13 @@ impl Problem for PlanningProblem<'_> {
             Some(s) if s < f.n => s + 1,
             _ => rand::Rng::random_range(rng, 1..=f.n),
         };
+        if (k == 1 || k == f.n)
+            && rand::Rng::random::<f64>(rng) < ZONE_MOVE_SHARE
+            && self.zone_move(&mut plan, block, k == 1, rng)
+        {
+            self.write_block(&plan, block, out);
+            return true;
+        }
         let sep = self.world.spec.timing.separation.max(1.0);
         let mut normal = || -> f64 { StandardNormal.sample(rng) };
         let (dx, dy, dz) = (normal(), normal(), normal());

@@ -158,7 +158,8 @@ pub trait Problem: Sync {
 
     /// A local move of block `block` of `x`, written into `out` (that block's values, inside
     /// the bounds): for a planning problem, one free waypoint of the UAV moved by a few
-    /// separation distances, the rest of its path kept where it is. `site` picks what moves
+    /// separation distances (or, at a zone the UAV shares, placed near it at a clear
+    /// bearing), the rest of its path kept where it is. `site` picks what moves
     /// (an index into [`Problem::hot_spots`]' weights, which may include sites other than
     /// waypoints, such as a departure delay); `None` draws a waypoint uniformly. Returns
     /// false, writing nothing, when the problem has no such move (the default). Not an

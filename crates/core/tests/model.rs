@@ -980,6 +980,75 @@ fn with_delays_free_a_waiting_uavs_energy_weighs_its_delay_and_a_nudge_there_mov
 }
 
 #[test]
+fn a_nudge_at_a_shared_zone_puts_the_end_waypoint_at_a_clear_bearing_near_it() {
+    use swarmplan_core::encoding::{EncodingKind, InitKind};
+    use swarmplan_core::planning::PlanningProblem;
+    use swarmplan_core::problem::Problem;
+    use swarmplan_core::zone_slot::{bearing, min_angle, SLOT_DISTANCE, SLOT_MARGIN};
+    let turned = |starts: &[[f64; 3]], at_start: bool| {
+        let s = spec(starts);
+        let (zone, sep, band) = (s.timing.zone_radius, s.timing.separation, s.map.z_agl);
+        let w = World::new(s, flat()).unwrap();
+        let p = PlanningProblem::new(&w, EncodingKind::Cartesian, InitKind::Line);
+        let n = p.block_size() / 3;
+        let plan = Plan::straight(
+            &(0..starts.len()).map(|i| w.start(i)).collect::<Vec<_>>(),
+            w.goal,
+            n,
+        );
+        let x = p.encode(&plan);
+        let (k, site, centre) = if at_start {
+            (1, 0, w.start(1))
+        } else {
+            (n, n - 1, w.goal)
+        };
+        let before = plan.uavs[1].waypoints[k];
+        let mut rng = swarmplan_core::rng::rng_from_seed(3);
+        let size = p.block_size();
+        let mut turned = 0;
+        for _ in 0..30 {
+            let mut block = vec![f64::NAN; size];
+            assert!(p.nudge(&x, 1, Some(site), &mut rng, &mut block));
+            let mut y = x.clone();
+            y[size..2 * size].copy_from_slice(&block);
+            let after = p.decode(&y);
+            // Only that waypoint of that UAV moves.
+            for (u, path) in after.uavs.iter().enumerate() {
+                for (j, q) in path.waypoints.iter().enumerate() {
+                    if (u, j) != (1, k) {
+                        assert!(q.distance(plan.uavs[u].waypoints[j]) < 1e-9, "{u} {j}");
+                    }
+                }
+            }
+            let moved = after.uavs[1].waypoints[k];
+            let turn = (bearing(centre, moved) - bearing(centre, before)).abs();
+            let turn = turn.min(std::f64::consts::TAU - turn);
+            let r = moved.truncate().distance(centre.truncate());
+            let in_ring =
+                (SLOT_DISTANCE[0] * zone - 1e-9..=SLOT_DISTANCE[1] * zone + 1e-9).contains(&r);
+            assert!((band[0]..=band[1]).contains(&moved.z), "{}", moved.z);
+            if turn >= SLOT_MARGIN * min_angle(sep, zone) - 1e-9 && in_ring {
+                turned += 1;
+            }
+        }
+        turned
+    };
+    // Three UAVs from one start, on one line: a nudge of the first (or last) free
+    // waypoint turns it out of the others' bearing, into the ring near the zone.
+    let shared = [[100.0, 100.0, 150.0]; 3];
+    assert_eq!(turned(&shared, true), 30);
+    assert_eq!(turned(&shared, false), 30);
+    // Starts 200 m apart share no zone: a Gaussian nudge rarely turns that far and lands
+    // in the ring.
+    let apart = [
+        [100.0, 100.0, 150.0],
+        [100.0, 300.0, 150.0],
+        [100.0, 500.0, 150.0],
+    ];
+    assert!(turned(&apart, true) < 10);
+}
+
+#[test]
 fn a_shifted_copy_flies_the_donors_path_a_few_separations_aside() {
     use swarmplan_core::encoding::{EncodingKind, InitKind};
     use swarmplan_core::planning::{PlanningProblem, SHIFT_SEPARATIONS};

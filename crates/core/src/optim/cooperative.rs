@@ -68,7 +68,12 @@
 //! context per visit that counts as an evaluation. Drawn uniformly, the first free
 //! waypoint, which sets the bearing at which a UAV leaves the take-off zone, was moved in
 //! one nudge of ten, yet most runs left infeasible on the outside instances held a single
-//! separation loss at a zone's edge (docs/results.md, "Aimed nudges").
+//! separation loss at a zone's edge (docs/results.md, "Aimed nudges"). In a planning
+//! problem, a nudge of the first or last free waypoint of a UAV that shares its take-off
+//! zone (or UGV0's landing zone) is a *zone move*: the waypoint goes near the zone, at a
+//! bearing clear of the other UAVs' there and a height drawn in the band, since a long leg
+//! turned by a nudge hardly moves where it crosses the zone's edge (docs/results.md, "Zone
+//! moves").
 //!
 //! **Restarts.** A context can be stuck in a state no single block can repair (all UAVs out
 //! of contact in an interference window, where only a joint move makes a relay chain; a
