@@ -212,8 +212,6 @@ impl PlanningProblem<'_> {
         .map(|(cost, violation)| Evaluation::new(cost, violation))
     }
 
-    /// A pace uniform in the scenario's range when it is free (no draw otherwise, so runs
-    /// on a fixed pace keep their random streams).
     /// A *zone move* ([`zone_slot`]): UAV `block`'s first (`at_start`) or last free
     /// waypoint placed between [`zone_slot::SLOT_DISTANCE`] zone radii from its start (or
     /// UGV0), at the bearing nearest its own that is clear of the other UAVs' there (its
@@ -254,6 +252,8 @@ impl PlanningProblem<'_> {
         true
     }
 
+    /// A pace uniform in the scenario's range when it is free (no draw otherwise, so runs
+    /// on a fixed pace keep their random streams).
     fn draw_pace(&self, rng: &mut Rng, plan: &mut Plan) {
         let [lo, hi] = self.world.spec.timing.pace;
         if self.world.spec.timing.pace_is_free() {
