@@ -221,7 +221,7 @@ impl PlanningProblem<'_> {
         let timing = &self.world.spec.timing;
         let f = &self.frame;
         let (n, zone) = (f.n, timing.zone_radius);
-        if n == 0 || zone <= 0.0 || block >= plan.uavs.len() {
+        if n == 0 || zone <= 0.0 {
             return false;
         }
         let k = if at_start { 1 } else { n };
@@ -399,7 +399,7 @@ impl Problem for PlanningProblem<'_> {
             self.write_block(&plan, block, out);
             return true;
         }
-        let sep = self.world.spec.timing.separation.max(1.0);
+        let sep = timing.separation.max(1.0);
         let mut normal = || -> f64 { StandardNormal.sample(rng) };
         let (dx, dy, dz) = (normal(), normal(), normal());
         let Some(w) = plan

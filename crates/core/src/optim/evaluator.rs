@@ -79,8 +79,7 @@ impl<'a> Evaluator<'a> {
     /// ([`Problem::hot_spots`]); counted as one evaluation when the problem assessed `x` for
     /// it, `None` (nothing asked) when the budget is spent.
     pub fn hot_spots(&mut self, x: &[f64], block: usize, out: &mut Vec<f64>) -> Option<()> {
-        if self.limit.is_some_and(|l| self.count >= l) {
-            self.exhausted = true;
+        if self.spent() {
             return None;
         }
         if self.problem.hot_spots(x, block, out) {
@@ -300,10 +299,16 @@ impl<'a> Evaluator<'a> {
         allowed
     }
 
+    /// Whether the budget is spent; if so, the evaluator is marked exhausted.
+    fn spent(&mut self) -> bool {
+        let spent = self.limit.is_some_and(|l| self.count >= l);
+        self.exhausted |= spent;
+        spent
+    }
+
     /// Counts one evaluation of `x`, or refuses (`None`) when the budget is spent.
     fn admit(&mut self, x: &[f64]) -> Option<()> {
-        if self.limit.is_some_and(|l| self.count >= l) {
-            self.exhausted = true;
+        if self.spent() {
             return None;
         }
         debug_assert_eq!(
