@@ -189,6 +189,12 @@ fn same_seed_gives_the_same_plan_on_any_number_of_threads() {
         .stderr(predicates::str::contains(
             "expected 0 (one per core) to 4096",
         ));
+    // A negative count is refused by --threads' own message, not taken for a flag.
+    swarmplan()
+        .args(["plan", "--threads", "-1"])
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains("got `-1`"));
 }
 
 #[test]

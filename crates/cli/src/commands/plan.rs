@@ -79,7 +79,7 @@ pub struct PlanArgs {
     /// Worker threads evaluating a swarm (default 0: one per core, or `RAYON_NUM_THREADS`).
     /// The plan is the same bits for any number (docs/performance.md, "Parallel
     /// evaluation").
-    #[arg(long, default_value_t = 0, value_parser = parse_threads)]
+    #[arg(long, default_value_t = 0, value_parser = parse_threads, allow_negative_numbers = true)]
     pub threads: usize,
 }
 
