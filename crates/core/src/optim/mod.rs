@@ -96,7 +96,7 @@ mod swarm;
 mod test_problems;
 
 pub use abc::{Abc, AbcParams};
-pub use cmaes::{Cmaes, CmaesParams};
+pub use cmaes::{Cmaes, CmaesParams, Covariance};
 pub use cooperative::{CoopParams, Cooperative};
 pub use dimensional::{build_exemplar, build_exemplar_into, Exemplar, ExemplarStats};
 pub use dls_exemplar::{DlsExemplar, DlsExemplarParams};
