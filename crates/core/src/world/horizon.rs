@@ -41,6 +41,9 @@ pub struct Horizon {
     /// every entry in the block; `blocks` per bin.
     coarse: Vec<(f32, f32)>,
     blocks: usize,
+    /// Per bin: (first entry, last entry), the bounds of the whole bin (32 KB: it stays in
+    /// cache and settles a UAV far above or below the bin's terrain without the others).
+    bins: Vec<(f32, f32)>,
 }
 
 impl Horizon {
@@ -64,6 +67,10 @@ impl Horizon {
             .chunks_exact(steps)
             .flat_map(|bin| bin.chunks(BLOCK).map(|b| (b[0], b[b.len() - 1])))
             .collect();
+        let bins = table
+            .chunks_exact(steps)
+            .map(|bin| (bin[0], bin[steps - 1]))
+            .collect();
         Self {
             origin,
             step,
@@ -71,6 +78,7 @@ impl Horizon {
             table,
             coarse,
             blocks,
+            bins,
         }
     }
 
@@ -80,6 +88,13 @@ impl Horizon {
         let Some((slope, bin, k)) = self.entry_of(p) else {
             return true;
         };
+        let (first, last) = self.bins[bin];
+        if slope > f64::from(last) {
+            return true;
+        }
+        if slope <= f64::from(first) {
+            return false;
+        }
         let (low, high) = self.coarse[bin * self.blocks + (k - 1) / BLOCK];
         if slope > f64::from(high) {
             return true;
@@ -96,20 +111,28 @@ impl Horizon {
         let dx = p.x - self.origin.x;
         let dy = p.y - self.origin.y;
         let d = (dx * dx + dy * dy).sqrt();
-        // Samples strictly nearer than p: k * step < d.
-        let k = ceil_index(d / self.step).saturating_sub(1);
-        if k == 0 {
+        // Samples strictly nearer than p: k * step < d. Signed casts: one instruction each
+        // way where an unsigned one takes several; d / step >= 0 (or NaN, which casts to 0),
+        // and a saturated cast lands far above `steps` as an unsigned one would.
+        let k = ceil_index(d / self.step) - 1;
+        if k <= 0 {
             return None;
         }
-        let bin =
-            ((diamond_angle(dx, dy) * 0.25 * HORIZON_BINS as f64) as usize).min(HORIZON_BINS - 1);
-        Some(((p.z - self.origin.z) / d, bin, k.min(self.steps)))
+        #[allow(clippy::cast_possible_wrap)]
+        let last_bin = (HORIZON_BINS - 1) as i64;
+        let bin = ((diamond_angle(dx, dy) * 0.25 * HORIZON_BINS as f64) as i64).clamp(0, last_bin);
+        #[allow(clippy::cast_sign_loss)]
+        Some((
+            (p.z - self.origin.z) / d,
+            bin as usize,
+            (k as usize).min(self.steps),
+        ))
     }
 }
 
-/// ceil(q) as an index for q >= 0 (saturating), without a libm call.
-fn ceil_index(q: f64) -> usize {
-    let k = q as usize;
+/// ceil(q) for q >= 0 (saturating at `i64::MAX`; 0 for NaN), without a libm call.
+fn ceil_index(q: f64) -> i64 {
+    let k = q as i64;
     if (k as f64) < q {
         k.saturating_add(1)
     } else {
@@ -171,6 +194,34 @@ mod tests {
     fn visible_by_full_table(hz: &Horizon, p: DVec3) -> bool {
         hz.entry_of(p)
             .is_none_or(|(slope, b, k)| slope > f64::from(hz.table[b * hz.steps + k - 1]))
+    }
+
+    #[test]
+    fn signed_sample_counts_are_the_unsigned_ones() {
+        // The entry index as it was computed with unsigned casts.
+        fn unsigned(q: f64, steps: usize) -> Option<usize> {
+            let k = q as usize;
+            let k = if (k as f64) < q {
+                k.saturating_add(1)
+            } else {
+                k
+            };
+            let k = k.saturating_sub(1);
+            (k != 0).then(|| k.min(steps))
+        }
+        let steps = 140;
+        let mut qs = vec![
+            0.0, -0.0, 1e-300, 0.5, 1.0, 2.0, 139.0, 140.0, 141.0, 1e18, 1e19,
+        ];
+        qs.extend([2f64.powi(63), 2f64.powi(64), 1e300, f64::INFINITY, f64::NAN]);
+        qs.extend((0..2000).map(|i| i as f64 * 0.0731));
+        qs.extend((1..200).flat_map(|i| [f64::from(i).next_down(), f64::from(i).next_up()]));
+        for q in qs {
+            let k = ceil_index(q) - 1;
+            #[allow(clippy::cast_sign_loss)]
+            let signed = (k > 0).then(|| (k as usize).min(steps));
+            assert_eq!(signed, unsigned(q, steps), "{q}");
+        }
     }
 
     #[test]
