@@ -105,7 +105,7 @@ pub fn plan(
         "run": artifact,
         "plan": plan_file(world, &result.plan),
         "convergence": convergence,
-        "uav_costs": uav_trace,
+        "uav_costs": uav_trace.iter().map(|row| &row[..]).collect::<Vec<&[f64]>>(),
         "verdict": result.assessment.verdict(),
         "notes": loaded.notes,
     });

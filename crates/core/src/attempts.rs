@@ -24,7 +24,7 @@ use serde::{Deserialize, Serialize};
 use crate::json_f64;
 use crate::optim::IterationRecord;
 use crate::rng::derive_seed;
-use crate::run::{run_with_uav_trace, RunRequest, RunResult};
+use crate::run::{run_with_uav_trace, RunRequest, RunResult, UavTrace};
 use crate::world::World;
 
 /// Most attempts one request may ask for.
@@ -90,7 +90,7 @@ impl AttemptRecord {
 #[derive(Debug, Clone)]
 pub struct Attempts {
     pub result: RunResult,
-    pub uav_trace: Vec<Vec<f64>>,
+    pub uav_trace: UavTrace,
     pub records: Vec<AttemptRecord>,
 }
 
@@ -120,7 +120,7 @@ pub fn run_attempts(
 ) -> Attempts {
     let attempts = attempts.clamp(1, MAX_ATTEMPTS);
     let start = Instant::now();
-    let mut best: Option<(RunResult, Vec<Vec<f64>>, AttemptRecord)> = None;
+    let mut best: Option<(RunResult, UavTrace, AttemptRecord)> = None;
     let mut records = Vec::new();
     for attempt in 1..=attempts {
         let mut r = req.clone();

@@ -15,6 +15,18 @@ use std::path::Path;
 /// # Errors
 /// Creating, writing, syncing or renaming the temporary file failed.
 pub fn write_atomic(path: &Path, contents: &[u8]) -> std::io::Result<()> {
+    write_atomic_with(path, |w| w.write_all(contents))
+}
+
+/// Writes what `fill` writes to `path` atomically, through a buffer: a large output (the
+/// convergence trace of a long run) streams to disk instead of being built in memory first.
+///
+/// # Errors
+/// Creating, writing (`fill` included), syncing or renaming the temporary file failed.
+pub fn write_atomic_with(
+    path: &Path,
+    fill: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>,
+) -> std::io::Result<()> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
@@ -33,7 +45,11 @@ pub fn write_atomic(path: &Path, contents: &[u8]) -> std::io::Result<()> {
         .prefix(&format!(".{name}."))
         .suffix(".partial")
         .tempfile_in(dir)?;
-    tmp.write_all(contents)?;
+    {
+        let mut buffered = std::io::BufWriter::new(tmp.as_file_mut());
+        fill(&mut buffered)?;
+        buffered.flush()?;
+    }
     // A temporary file is created private (0600); the result is an ordinary output file.
     #[cfg(unix)]
     {
@@ -64,5 +80,22 @@ mod tests {
         let e = write_atomic(&missing, b"x").unwrap_err().to_string();
         assert!(e.contains("no/such does not exist"), "{e}");
         assert!(!e.contains(".partial"), "{e}");
+    }
+
+    #[test]
+    fn a_failed_fill_leaves_the_old_file_and_no_temporary() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("convergence.csv");
+        write_atomic(&p, b"old").unwrap();
+        let e = write_atomic_with(&p, |w| {
+            w.write_all(b"half")?;
+            Err(std::io::Error::other("disk full"))
+        })
+        .unwrap_err();
+        assert_eq!(e.to_string(), "disk full");
+        assert_eq!(std::fs::read(&p).unwrap(), b"old");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+        write_atomic_with(&p, |w| writeln!(w, "a,b")).unwrap();
+        assert_eq!(std::fs::read(&p).unwrap(), b"a,b\n");
     }
 }

@@ -55,5 +55,16 @@ fn tracing_per_uav_costs_does_not_change_the_run() {
         for (c, u) in last.iter().zip(&traced.assessment.per_uav) {
             assert_eq!(c.to_bits(), u.cost.to_bits(), "{preset}: {c} vs {}", u.cost);
         }
+        // An iteration that keeps the best shares its row with the iteration before (one
+        // row in memory per change of the best), and a shared row means an unchanged best.
+        let mut shared = 0;
+        for (k, pair) in trace.windows(2).enumerate() {
+            let r = &traced.outcome.trace;
+            if std::sync::Arc::ptr_eq(&pair[0], &pair[1]) {
+                shared += 1;
+                assert_eq!(r[k].best_cost.to_bits(), r[k + 1].best_cost.to_bits());
+            }
+        }
+        assert!(shared > 0, "{preset}: no iteration kept its best");
     }
 }

@@ -2,7 +2,6 @@
 //! `convergence.csv`, `run.json` (the typed [`RunArtifact`]) and `scenario.toml` into
 //! `--out`.
 
-use std::io::Write as _;
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
@@ -13,7 +12,7 @@ use swarmplan_core::method::Method;
 use swarmplan_core::optim::{Budget, OptimizerParams};
 use swarmplan_core::run::RunRequest;
 use swarmplan_io::artifact::{ArtifactFiles, RunArtifact};
-use swarmplan_io::atomic::write_atomic;
+use swarmplan_io::atomic::{write_atomic, write_atomic_with};
 use swarmplan_io::plan_file::plan_file;
 use swarmplan_io::scenario::to_toml;
 
@@ -280,8 +279,8 @@ pub fn budget(
 }
 
 /// `trace[k][i]` (iteration, UAV) as one series per UAV.
-fn uav_series(trace: &[Vec<f64>]) -> Vec<Vec<f64>> {
-    let n = trace.first().map_or(0, Vec::len);
+fn uav_series(trace: &[std::sync::Arc<[f64]>]) -> Vec<Vec<f64>> {
+    let n = trace.first().map_or(0, |row| row.len());
     (0..n)
         .map(|i| trace.iter().map(|row| row[i]).collect())
         .collect()
@@ -425,30 +424,35 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     )
     .with_context(|| format!("{}: cannot write", plan_path.display()))?;
     let conv_path = out.join("convergence.csv");
-    let mut csv: Vec<u8> = Vec::new();
-    let n = world.uav_count();
-    let uav_columns: String = (0..n).map(|i| format!(",uav{i}_cost")).collect();
-    writeln!(
-        csv,
-        "iteration,evaluations,best_cost,best_cost_per_uav,best_violation{uav_columns}"
-    )?;
-    for (k, r) in result.outcome.trace.iter().enumerate() {
-        let per_uav: String = uav_trace
-            .get(k)
-            .map(|v| v.iter().map(|c| format!(",{c}")).collect())
-            .unwrap_or_default();
-        writeln!(
+    // Streamed: a long run's trace (a row per iteration, a column per UAV) can be large.
+    write_atomic_with(&conv_path, |csv| {
+        let n = world.uav_count();
+        write!(
             csv,
-            "{},{},{},{},{}{per_uav}",
-            r.iteration,
-            r.evaluations,
-            r.best_cost,
-            r.best_cost / n as f64,
-            r.best_violation
+            "iteration,evaluations,best_cost,best_cost_per_uav,best_violation"
         )?;
-    }
-    write_atomic(&conv_path, &csv)
-        .with_context(|| format!("{}: cannot write", conv_path.display()))?;
+        for i in 0..n {
+            write!(csv, ",uav{i}_cost")?;
+        }
+        writeln!(csv)?;
+        for (k, r) in result.outcome.trace.iter().enumerate() {
+            write!(
+                csv,
+                "{},{},{},{},{}",
+                r.iteration,
+                r.evaluations,
+                r.best_cost,
+                r.best_cost / n as f64,
+                r.best_violation
+            )?;
+            for c in uav_trace.get(k).map_or(&[][..], |v| &v[..]) {
+                write!(csv, ",{c}")?;
+            }
+            writeln!(csv)?;
+        }
+        Ok(())
+    })
+    .with_context(|| format!("{}: cannot write", conv_path.display()))?;
 
     let a = &result.assessment;
     let mut files = ArtifactFiles {
