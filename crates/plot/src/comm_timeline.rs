@@ -126,13 +126,17 @@ impl CommTimeline<'_> {
             .x_label_area_size(s.px(45.0))
             .y_label_area_size(s.px(100.0))
             .build_cartesian_2d(Axis::linear(0.0, self.t_end()), rows)?;
+        // At most about 20 row labels, so a large fleet's names do not overprint.
+        let every = n.div_ceil(MAX_ROW_LABELS).max(1);
         let name = |v: &f64| {
             let k = v.round();
             if (v - k).abs() < 1e-6 && k >= 0.0 && (k as usize) < n {
-                format!("UAV {}", n - 1 - k as usize)
-            } else {
-                String::new()
+                let uav = n - 1 - k as usize;
+                if uav.is_multiple_of(every) {
+                    return format!("UAV {uav}");
+                }
             }
+            String::new()
         };
         chart
             .configure_mesh()
@@ -290,17 +294,48 @@ impl CommTimeline<'_> {
                 Entry::line("waiting at its start", style::WAITING, s.px(5.0)),
             );
         }
-        for i in 0..self.trace.uav_count() {
-            e.push(Entry::Note(format!(
+        let n = self.trace.uav_count();
+        let line = |i: usize| {
+            Entry::Note(format!(
                 "UAV {}: {} s / {} s",
                 i,
                 format_value(self.trace.seconds(i, Contact::Relayed)),
                 format_value(self.trace.seconds(i, Contact::Out)),
-            )));
+            ))
+        };
+        if n <= style::UAV_LEGEND_ROWS {
+            e.extend((0..n).map(line));
+            return e;
         }
+        // A large fleet: its totals, then the UAVs out of contact longest (then relayed
+        // longest), as many as a panel holds.
+        let total = |c: Contact| (0..n).map(|i| self.trace.seconds(i, c)).sum::<f64>();
+        e.push(Entry::Note(format!(
+            "all {n} UAVs: {} s / {} s",
+            format_value(total(Contact::Relayed)),
+            format_value(total(Contact::Out)),
+        )));
+        let mut order: Vec<usize> = (0..n).collect();
+        let key = |i: usize| {
+            (
+                self.trace.seconds(i, Contact::Out),
+                self.trace.seconds(i, Contact::Relayed),
+            )
+        };
+        order.sort_by(|&a, &b| {
+            let (ka, kb) = (key(a), key(b));
+            kb.0.total_cmp(&ka.0)
+                .then(kb.1.total_cmp(&ka.1))
+                .then(a.cmp(&b))
+        });
+        e.push(Entry::Note("longest out, then relayed:".into()));
+        e.extend(order.into_iter().take(style::UAV_LEGEND_ROWS / 2).map(line));
         e
     }
 }
+
+/// Row labels of the contact chart, at most (every k-th UAV above this many).
+const MAX_ROW_LABELS: usize = 20;
 
 impl Figure for CommTimeline<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<(), DB> {

@@ -48,10 +48,20 @@ struct ConvergenceRun<'a> {
     y: Axis,
 }
 
+/// One line of the figure and its legend row (`name`: none for a UAV of a large fleet
+/// other than the first of its colour; `single`: the row names this line alone).
+struct Series<'a> {
+    name: Option<String>,
+    single: bool,
+    colour: RGBColor,
+    width: u32,
+    values: &'a [f64],
+}
+
 /// Maximal runs of finite values of `v` as (iteration, value) polylines.
 pub(crate) fn finite_runs(v: impl IntoIterator<Item = f64>) -> Vec<Vec<(f64, f64)>> {
     let mut out: Vec<Vec<(f64, f64)>> = Vec::new();
-    let mut cur = Vec::new();
+    let mut cur: Vec<(f64, f64)> = Vec::new();
     for (k, x) in v.into_iter().enumerate() {
         let x = cost(x);
         if x.is_finite() {
@@ -99,28 +109,52 @@ impl Figure for ConvergenceRun<'_> {
             &cost_desc("best cost (lower is better)", &self.y),
         )?;
 
-        let mut series: Vec<(String, RGBColor, u32, &[f64])> = self
+        // A large fleet's UAVs share one legend row per colour (`style::uav_label`),
+        // without a final value.
+        let n = self.per_uav.len();
+        let mut series: Vec<Series> = self
             .per_uav
             .iter()
             .enumerate()
-            .map(|(i, v)| (format!("UAV {i}"), style::uav_colour(i), s.px(2.0), &v[..]))
+            .map(|(i, v)| Series {
+                name: style::uav_label(i, n),
+                single: n <= style::UAV_LEGEND_ROWS,
+                colour: style::uav_colour(i),
+                width: s.px(2.0),
+                values: v,
+            })
             .collect();
         if !self.trace.is_empty() {
-            series.push(("total".to_string(), BLACK, s.px(3.0), self.trace));
+            series.push(Series {
+                name: Some("total".to_string()),
+                single: true,
+                colour: BLACK,
+                width: s.px(3.0),
+                values: self.trace,
+            });
         }
         let key_len = s.off(24.0);
-        for (name, c, w, values) in series {
+        for series in series {
+            let Series {
+                name,
+                single,
+                colour: c,
+                width: w,
+                values,
+            } = series;
             let mut runs = finite_runs(values.iter().copied());
-            let label = match runs.last().and_then(|r| r.last()) {
-                Some(p) => format!("{name} (final {})", format_value(p.1)),
-                None => name,
+            let label = match (name, runs.last().and_then(|r| r.last())) {
+                (Some(name), Some(p)) if single => {
+                    Some(format!("{name} (final {})", format_value(p.1)))
+                }
+                (name, _) => name,
             };
             if runs.is_empty() {
                 runs.push(Vec::new());
             }
             for (k, r) in runs.into_iter().enumerate() {
                 let anno = chart.draw_series(LineSeries::new(r, c.stroke_width(w)))?;
-                if k == 0 {
+                if let (0, Some(label)) = (k, &label) {
                     anno.label(label.clone()).legend(move |(x, y)| {
                         PathElement::new(vec![(x, y), (x + key_len, y)], c.stroke_width(w))
                     });

@@ -100,6 +100,25 @@ pub(crate) fn uav_colour(i: usize) -> RGBColor {
     UAV_COLOURS[i % UAV_COLOURS.len()]
 }
 
+/// A legend names each UAV up to this many; a larger fleet gets one row per colour.
+pub(crate) const UAV_LEGEND_ROWS: usize = 2 * UAV_COLOURS.len();
+
+/// The legend label of UAV `i` in a fleet of `n`: "UAV i" while each UAV fits a row of its
+/// own; above [`UAV_LEGEND_ROWS`] the first UAV of each colour speaks for every UAV of that
+/// colour ("UAVs 2, 10, ..., 98") and the others get none, so a 100-UAV legend stays 8 rows
+/// instead of running off the figure.
+pub(crate) fn uav_label(i: usize, n: usize) -> Option<String> {
+    let k = UAV_COLOURS.len();
+    if n <= UAV_LEGEND_ROWS {
+        Some(format!("UAV {i}"))
+    } else if i < k {
+        let last = i + (n - 1 - i) / k * k;
+        Some(format!("UAVs {i}, {}, ..., {last}", i + k))
+    } else {
+        None
+    }
+}
+
 /// Colour of UAV `i` as CSS hex (`#rrggbb`), for pages that show the same fleet.
 #[must_use]
 pub fn uav_colour_hex(i: usize) -> String {
@@ -262,5 +281,14 @@ mod tests {
         let s = Scale::of((400, 300));
         assert!(s.font(16.0) >= 9.0);
         assert_eq!(Scale::of((1200, 900)).px(10.0), 10);
+    }
+
+    #[test]
+    fn a_large_fleet_gets_one_legend_row_per_colour() {
+        assert_eq!(uav_label(15, UAV_LEGEND_ROWS).as_deref(), Some("UAV 15"));
+        let labels: Vec<String> = (0..100).filter_map(|i| uav_label(i, 100)).collect();
+        assert_eq!(labels.len(), 8);
+        assert_eq!(labels[0], "UAVs 0, 8, ..., 96");
+        assert_eq!(labels[7], "UAVs 7, 15, ..., 95");
     }
 }

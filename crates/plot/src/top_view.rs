@@ -160,8 +160,15 @@ impl<'a> TopView<'a> {
 
     fn legend_entries(&self, s: Scale) -> Vec<Entry> {
         let w = s.px(3.0);
-        let mut e: Vec<Entry> = (0..self.plan.uavs.len())
-            .map(|i| Entry::line(format!("UAV {i}"), style::uav_colour(i), w))
+        let n = self.plan.uavs.len();
+        let mut e: Vec<Entry> = (0..n)
+            .filter_map(|i| {
+                Some(Entry::line(
+                    style::uav_label(i, n)?,
+                    style::uav_colour(i),
+                    w,
+                ))
+            })
             .collect();
         e.push(Entry::marker("waypoint", Shape::Dot, RGBColor(90, 90, 90)));
         e.push(Entry::marker(

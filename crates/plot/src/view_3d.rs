@@ -132,8 +132,12 @@ impl<'a> View3d<'a> {
     }
 
     fn legend_entries(&self, s: Scale, exaggeration: f64) -> Vec<Entry> {
-        let mut e: Vec<Entry> = (0..self.plan.uavs.len())
-            .map(|i| Entry::line(format!("UAV {i}"), style::uav_colour(i), s.px(3.0)))
+        let n = self.plan.uavs.len();
+        let mut e: Vec<Entry> = (0..n)
+            .filter_map(|i| {
+                let label = style::uav_label(i, n)?;
+                Some(Entry::line(label, style::uav_colour(i), s.px(3.0)))
+            })
             .collect();
         e.push(Entry::line(
             "path shadow on the ground",
