@@ -87,6 +87,24 @@ pub fn parse_seed(s: &str) -> Result<u64, String> {
         .map_err(|_| format!("expected a whole number in [0, {}], got `{s}`", u64::MAX))
 }
 
+/// Most worker threads `plan` or `bench` starts (each holds a stack; a bench thread a world).
+pub const MAX_THREADS: usize = 4096;
+
+/// `--threads` of `plan` and `bench`: 0 (one per core) to [`MAX_THREADS`]. Negative numbers
+/// reach this parser too, so they get its message.
+pub fn parse_threads(s: &str) -> Result<usize, String> {
+    let n: usize = s.trim().parse().map_err(|_| {
+        format!("expected a whole number, 0 (one per core) to {MAX_THREADS}, got `{s}`")
+    })?;
+    if n <= MAX_THREADS {
+        Ok(n)
+    } else {
+        Err(format!(
+            "expected 0 (one per core) to {MAX_THREADS}, got {n}"
+        ))
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {

@@ -467,6 +467,12 @@ fn more_threads_than_runs_is_no_hang_and_absurd_counts_are_refused() {
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("--threads") && err.contains("100000"), "{err}");
+    // A negative count gets the same parser's message as `plan --threads -1`.
+    let out = bench("-1", "c");
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("0 (one per core)") && err.contains("`-1`"), "{err}");
+    assert!(!dir.path().join("b").exists() && !dir.path().join("c").exists());
 }
 
 /// A bench of `method` on `tiny`, `runs` runs of 2 iterations of 4 particles: seconds of

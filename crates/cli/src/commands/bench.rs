@@ -44,7 +44,7 @@ pub struct BenchArgs {
     #[arg(long, allow_hyphen_values = true, value_parser = crate::parse_seed)]
     pub seed: Option<u64>,
     /// Worker threads (default: one per core).
-    #[arg(long, default_value_t = 0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0, value_parser = crate::parse_threads, allow_negative_numbers = true)]
     pub threads: usize,
     /// Output folder.
     #[arg(long, default_value = "out/bench")]
@@ -291,16 +291,8 @@ impl LogLines {
     }
 }
 
-/// Most worker threads `bench` starts (each holds a stack and a world).
-const MAX_THREADS: usize = 4096;
-
 pub fn run_bench(args: &BenchArgs) -> Result<()> {
     let spec = experiment(args)?;
-    anyhow::ensure!(
-        args.threads <= MAX_THREADS,
-        "--threads: expected 0 (one per core) or at most {MAX_THREADS}, got {}",
-        args.threads
-    );
     // Scenarios no plan can satisfy are said once, before the runs start; a scenario that
     // does not load, or a bad --shard, is said before the folder is made.
     for name in &spec.scenarios {

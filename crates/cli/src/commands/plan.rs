@@ -78,25 +78,8 @@ pub struct PlanArgs {
     /// Worker threads evaluating a swarm (default 0: one per core, or `RAYON_NUM_THREADS`).
     /// The plan is the same bits for any number (docs/performance.md, "Parallel
     /// evaluation").
-    #[arg(long, default_value_t = 0, value_parser = parse_threads, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0, value_parser = crate::parse_threads, allow_negative_numbers = true)]
     pub threads: usize,
-}
-
-/// Most worker threads `plan` starts.
-const MAX_THREADS: usize = 4096;
-
-/// `--threads`: 0 (one per core) to [`MAX_THREADS`].
-fn parse_threads(s: &str) -> Result<usize, String> {
-    let n: usize = s.parse().map_err(|_| {
-        format!("expected a whole number, 0 (one per core) to {MAX_THREADS}, got `{s}`")
-    })?;
-    if n <= MAX_THREADS {
-        Ok(n)
-    } else {
-        Err(format!(
-            "expected 0 (one per core) to {MAX_THREADS}, got {n}"
-        ))
-    }
 }
 
 /// `--attempts`: 1 to [`MAX_ATTEMPTS`].
