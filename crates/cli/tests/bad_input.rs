@@ -471,7 +471,10 @@ fn more_threads_than_runs_is_no_hang_and_absurd_counts_are_refused() {
     let out = bench("-1", "c");
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("0 (one per core)") && err.contains("`-1`"), "{err}");
+    assert!(
+        err.contains("0 (one per core)") && err.contains("`-1`"),
+        "{err}"
+    );
     assert!(!dir.path().join("b").exists() && !dir.path().join("c").exists());
 }
 

@@ -112,8 +112,18 @@ pub(crate) fn uav_label(i: usize, n: usize) -> Option<String> {
     if n <= UAV_LEGEND_ROWS {
         Some(format!("UAV {i}"))
     } else if i < k {
-        let last = i + (n - 1 - i) / k * k;
-        Some(format!("UAVs {i}, {}, ..., {last}", i + k))
+        let same: Vec<usize> = (i..n).step_by(k).collect();
+        let names: Vec<String> = if same.len() <= 3 {
+            same.iter().map(usize::to_string).collect()
+        } else {
+            vec![
+                i.to_string(),
+                (i + k).to_string(),
+                "...".into(),
+                same[same.len() - 1].to_string(),
+            ]
+        };
+        Some(format!("UAVs {}", names.join(", ")))
     } else {
         None
     }
@@ -290,5 +300,9 @@ mod tests {
         assert_eq!(labels.len(), 8);
         assert_eq!(labels[0], "UAVs 0, 8, ..., 96");
         assert_eq!(labels[7], "UAVs 7, 15, ..., 95");
+        // A colour with two or three UAVs names them all.
+        assert_eq!(uav_label(1, 17).as_deref(), Some("UAVs 1, 9"));
+        assert_eq!(uav_label(0, 17).as_deref(), Some("UAVs 0, 8, 16"));
+        assert_eq!(uav_label(8, 17), None);
     }
 }
