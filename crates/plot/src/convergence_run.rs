@@ -7,6 +7,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::axis::{draw_mesh, format_value, Axis};
+use crate::decimate::{thins, M4};
 use crate::records::cost;
 use crate::render::{no_data, render, DrawResult, Figure, PlotError, Target, Written};
 use crate::style::{self, Scale};
@@ -60,20 +61,55 @@ struct Series<'a> {
 
 /// Maximal runs of finite values of `v` as (iteration, value) polylines.
 pub(crate) fn finite_runs(v: impl IntoIterator<Item = f64>) -> Vec<Vec<(f64, f64)>> {
+    thinned_finite_runs(v, None::<&fn(f64, f64) -> i32>)
+}
+
+/// [`finite_runs`], each run thinned by M4 ([`crate::decimate`]) on the pixel columns
+/// `column_of(x, y)` when given; the full runs are never held.
+fn thinned_finite_runs<F: Fn(f64, f64) -> i32>(
+    v: impl IntoIterator<Item = f64>,
+    column_of: Option<&F>,
+) -> Vec<Vec<(f64, f64)>> {
     let mut out: Vec<Vec<(f64, f64)>> = Vec::new();
-    let mut cur: Vec<(f64, f64)> = Vec::new();
+    let mut cur: Option<Open<'_, F>> = None;
     for (k, x) in v.into_iter().enumerate() {
         let x = cost(x);
         if x.is_finite() {
-            cur.push((k as f64, x));
-        } else if !cur.is_empty() {
-            out.push(std::mem::take(&mut cur));
+            cur.get_or_insert_with(|| match column_of {
+                Some(f) => Open::Thinned(M4::new(f)),
+                None => Open::Every(Vec::new()),
+            })
+            .push(k, (k as f64, x));
+        } else if let Some(run) = cur.take() {
+            out.push(run.finish());
         }
     }
-    if !cur.is_empty() {
-        out.push(cur);
+    if let Some(run) = cur {
+        out.push(run.finish());
     }
     out
+}
+
+/// The run being collected: every vertex, or M4's.
+enum Open<'f, F> {
+    Every(Vec<(f64, f64)>),
+    Thinned(M4<&'f F>),
+}
+
+impl<F: Fn(f64, f64) -> i32> Open<'_, F> {
+    fn push(&mut self, k: usize, p: (f64, f64)) {
+        match self {
+            Self::Every(v) => v.push(p),
+            Self::Thinned(m) => m.push(k, p),
+        }
+    }
+
+    fn finish(self) -> Vec<(f64, f64)> {
+        match self {
+            Self::Every(v) => v,
+            Self::Thinned(m) => m.finish(),
+        }
+    }
 }
 
 /// The y description of a cost axis.
@@ -134,15 +170,25 @@ impl Figure for ConvergenceRun<'_> {
             });
         }
         let key_len = s.off(24.0);
-        for series in series {
+        // The pixel column a vertex is drawn in, for thinning long series.
+        let columns = chart.plotting_area().dim_in_pixel().0;
+        let column_of = |x: f64, y: f64| chart.backend_coord(&(x, y)).0;
+        let thinned: Vec<Vec<Vec<(f64, f64)>>> = series
+            .iter()
+            .map(|series| {
+                let values = series.values.iter().copied();
+                let thin = thins(series.values.len(), columns).then_some(&column_of);
+                thinned_finite_runs(values, thin)
+            })
+            .collect();
+        for (series, mut runs) in series.into_iter().zip(thinned) {
             let Series {
                 name,
                 single,
                 colour: c,
                 width: w,
-                values,
+                values: _,
             } = series;
-            let mut runs = finite_runs(values.iter().copied());
             let label = match (name, runs.last().and_then(|r| r.last())) {
                 (Some(name), Some(p)) if single => {
                     Some(format!("{name} (final {})", format_value(p.1)))

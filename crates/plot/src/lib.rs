@@ -26,6 +26,7 @@ mod comm_timeline;
 mod contour;
 mod convergence_bench;
 mod convergence_run;
+mod decimate;
 mod legend;
 mod performance_profile;
 mod records;

@@ -256,6 +256,61 @@ fn every_figure_renders_on_the_tiny_scenario() {
     );
 }
 
+/// Vertices of the SVG's polylines (plotters writes `points="x,y x,y ..."`).
+fn polyline_vertices(svg: &str) -> Vec<usize> {
+    svg.split("<polyline")
+        .skip(1)
+        .filter_map(|p| {
+            let start = p.find("points=\"")? + 8;
+            let end = start + p[start..].find('"')?;
+            Some(p[start..end].split_whitespace().count())
+        })
+        .collect()
+}
+
+#[test]
+fn a_long_trace_is_drawn_with_a_few_vertices_per_pixel_column() {
+    let dir = tempfile::tempdir().unwrap();
+    // 300,000 iterations: infeasible (infinite) at first, then a staircase with wiggles
+    // per UAV, as a run under --time-limit makes.
+    let n = 300_000;
+    let trace: Vec<f64> = (0..n)
+        .map(|k| {
+            if k < 1_000 {
+                f64::INFINITY
+            } else {
+                900.0 + 4000.0 / (1.0 + (k / 997) as f64)
+            }
+        })
+        .collect();
+    let per_uav: Vec<Vec<f64>> = (0..3)
+        .map(|u| {
+            trace
+                .iter()
+                .enumerate()
+                .map(|(k, v)| v / 3.0 + ((k * (u + 3)) % 17) as f64)
+                .collect()
+        })
+        .collect();
+    let w = convergence_run(&trace, Some(&per_uav), "long", dir.path().join("long")).unwrap();
+    check(&w, Target::DEFAULT_SIZE);
+    let svg = std::fs::read_to_string(&w.svg).unwrap();
+    let width = Target::DEFAULT_SIZE.0 as usize;
+    let lines = polyline_vertices(&svg);
+    // Four series; each run at most M4's four vertices per pixel column of the figure.
+    let long: Vec<usize> = lines.iter().copied().filter(|&v| v > 100).collect();
+    assert_eq!(long.len(), 4, "{lines:?}");
+    assert!(long.iter().all(|&v| v <= 4 * width), "{long:?}");
+    assert!(svg.len() < 1_000_000, "{} bytes", svg.len());
+    assert_eq!(svg.matches("(final ").count(), 4);
+
+    // An ordinary length is drawn whole: one vertex per iteration.
+    let short: Vec<f64> = trace[..3_905].iter().map(|v| v.min(1e9)).collect();
+    let w = convergence_run(&short, None, "short", dir.path().join("short")).unwrap();
+    let lines = polyline_vertices(&std::fs::read_to_string(&w.svg).unwrap());
+    assert!(lines.contains(&3_905), "{lines:?}");
+}
+
 #[test]
 fn a_performance_profile_counts_the_instances_each_method_wins() {
     let dir = tempfile::tempdir().unwrap();
