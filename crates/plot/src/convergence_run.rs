@@ -3,6 +3,8 @@
 //! carry the penalty and can be orders of magnitude above feasible ones, so the cost axis
 //! turns logarithmic when the trace spans more than a factor of 8 (the axis says so).
 
+use std::sync::Arc;
+
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -12,23 +14,83 @@ use crate::records::cost;
 use crate::render::{no_data, render, DrawResult, Figure, PlotError, Target, Written};
 use crate::style::{self, Scale};
 
+/// Each UAV's cost in the best plan along a run, as `plan` holds it or as
+/// `convergence.csv` gives it back.
+#[derive(Debug, Clone, Copy)]
+pub enum PerUav<'a> {
+    /// No per-UAV lines.
+    None,
+    /// One series per UAV: `[i][k]` is UAV i's cost after iteration k.
+    Columns(&'a [Vec<f64>]),
+    /// One row per iteration: `[k][i]`. `plan`'s trace ([`swarmplan_core::run::UavTrace`])
+    /// shares a row while the best stands, so drawing from it copies nothing: a column per
+    /// UAV would hold 8 bytes per UAV and iteration (600 MB for 100 UAVs over an hour).
+    Rows(&'a [Arc<[f64]>]),
+}
+
+impl<'a> PerUav<'a> {
+    fn uavs(self) -> usize {
+        match self {
+            Self::None => 0,
+            Self::Columns(c) => c.len(),
+            Self::Rows(r) => r.first().map_or(0, |row| row.len()),
+        }
+    }
+
+    /// UAV i's series.
+    fn column(self, i: usize) -> Column<'a> {
+        match self {
+            Self::None => Column::Slice(&[]),
+            Self::Columns(c) => Column::Slice(&c[i]),
+            Self::Rows(r) => Column::OfRows(r, i),
+        }
+    }
+}
+
+/// One line's values, borrowed.
+#[derive(Clone, Copy)]
+enum Column<'a> {
+    Slice(&'a [f64]),
+    /// Entry i of every row (NaN, not drawn, where a row is short).
+    OfRows(&'a [Arc<[f64]>], usize),
+}
+
+impl<'a> Column<'a> {
+    fn len(self) -> usize {
+        match self {
+            Self::Slice(v) => v.len(),
+            Self::OfRows(r, _) => r.len(),
+        }
+    }
+
+    fn values(self) -> Box<dyn Iterator<Item = f64> + 'a> {
+        match self {
+            Self::Slice(v) => Box::new(v.iter().copied()),
+            Self::OfRows(r, i) => Box::new(
+                r.iter()
+                    .map(move |row| row.get(i).copied().unwrap_or(f64::NAN)),
+            ),
+        }
+    }
+}
+
 /// Writes the convergence of one run to `out`: `trace[k]` is the best total cost after
-/// iteration k (k = 0: after initialisation); `per_uav`, when given, holds one series per
-/// UAV (`per_uav[i][k]`: UAV i's cost in the best plan after iteration k). Non-finite values
-/// (and `f64::MAX`, which records use for them) are left out of the lines.
+/// iteration k (k = 0: after initialisation); `per_uav` gives each UAV's cost in the best
+/// plan after iteration k. Non-finite values (and `f64::MAX`, which records use for them)
+/// are left out of the lines.
 pub fn convergence_run(
     trace: &[f64],
-    per_uav: Option<&[Vec<f64>]>,
+    per_uav: PerUav<'_>,
     title: &str,
     out: impl Into<Target>,
 ) -> Result<Written, PlotError> {
     let target = out.into();
-    let per_uav = per_uav.unwrap_or(&[]);
     let all = || {
         trace
             .iter()
-            .chain(per_uav.iter().flatten())
-            .map(|v| cost(*v))
+            .copied()
+            .chain((0..per_uav.uavs()).flat_map(|i| per_uav.column(i).values()))
+            .map(cost)
     };
     if all().all(|v| !v.is_finite()) {
         return Err(no_data(&target, "the convergence trace has no finite cost"));
@@ -44,7 +106,7 @@ pub fn convergence_run(
 
 struct ConvergenceRun<'a> {
     trace: &'a [f64],
-    per_uav: &'a [Vec<f64>],
+    per_uav: PerUav<'a>,
     title: &'a str,
     y: Axis,
 }
@@ -56,7 +118,7 @@ struct Series<'a> {
     single: bool,
     colour: RGBColor,
     width: u32,
-    values: &'a [f64],
+    values: Column<'a>,
 }
 
 /// Maximal runs of finite values of `v` as (iteration, value) polylines.
@@ -125,10 +187,9 @@ impl Figure for ConvergenceRun<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<(), DB> {
         let s = Scale::of(root.dim_in_pixel());
         let body = root.titled(self.title, s.title())?;
-        let len = self
-            .per_uav
-            .iter()
-            .map(Vec::len)
+        let n = self.per_uav.uavs();
+        let len = (0..n)
+            .map(|i| self.per_uav.column(i).len())
             .chain([self.trace.len()])
             .max()
             .unwrap_or(0);
@@ -147,17 +208,13 @@ impl Figure for ConvergenceRun<'_> {
 
         // A large fleet's UAVs share one legend row per colour (`style::uav_label`),
         // without a final value.
-        let n = self.per_uav.len();
-        let mut series: Vec<Series> = self
-            .per_uav
-            .iter()
-            .enumerate()
-            .map(|(i, v)| Series {
+        let mut series: Vec<Series> = (0..n)
+            .map(|i| Series {
                 name: style::uav_label(i, n),
                 single: n <= style::UAV_LEGEND_ROWS,
                 colour: style::uav_colour(i),
                 width: s.px(2.0),
-                values: v,
+                values: self.per_uav.column(i),
             })
             .collect();
         if !self.trace.is_empty() {
@@ -166,7 +223,7 @@ impl Figure for ConvergenceRun<'_> {
                 single: true,
                 colour: BLACK,
                 width: s.px(3.0),
-                values: self.trace,
+                values: Column::Slice(self.trace),
             });
         }
         let key_len = s.off(24.0);
@@ -176,7 +233,7 @@ impl Figure for ConvergenceRun<'_> {
         let thinned: Vec<Vec<Vec<(f64, f64)>>> = series
             .iter()
             .map(|series| {
-                let values = series.values.iter().copied();
+                let values = series.values.values();
                 let thin = thins(series.values.len(), columns).then_some(&column_of);
                 thinned_finite_runs(values, thin)
             })

@@ -41,7 +41,7 @@ mod violation_marks;
 pub use bench_boxplots::bench_boxplots;
 pub use comm_timeline::comm_timeline;
 pub use convergence_bench::convergence_bench;
-pub use convergence_run::convergence_run;
+pub use convergence_run::{convergence_run, PerUav};
 pub use performance_profile::performance_profile;
 pub use render::{PlotError, Target, Written};
 pub use style::uav_colour_hex;

@@ -14,7 +14,7 @@ use swarmplan_experiment::record::RunRecord;
 use swarmplan_io::scenario::{build_world, load_spec};
 use swarmplan_plot::{
     bench_boxplots, comm_timeline, convergence_bench, convergence_run, performance_profile,
-    top_view, view_3d, PlotError, Target, Written,
+    top_view, view_3d, PerUav, PlotError, Target, Written,
 };
 
 fn tiny() -> World {
@@ -218,7 +218,13 @@ fn every_figure_renders_on_the_tiny_scenario() {
         trace.iter().map(|v| v * 0.55).collect(),
     ];
     check(
-        &convergence_run(&trace, Some(&per_uav), title, dir.path().join("conv")).unwrap(),
+        &convergence_run(
+            &trace,
+            PerUav::Columns(&per_uav),
+            title,
+            dir.path().join("conv"),
+        )
+        .unwrap(),
         size,
     );
     // A trace that starts infeasible (infinite) and a smaller figure.
@@ -227,7 +233,7 @@ fn every_figure_renders_on_the_tiny_scenario() {
     penalised[1] = f64::MAX;
     let small = Target::new(dir.path().join("conv_small")).with_size(800, 600);
     check(
-        &convergence_run(&penalised, None, title, small).unwrap(),
+        &convergence_run(&penalised, PerUav::None, title, small).unwrap(),
         (800, 600),
     );
 
@@ -292,7 +298,13 @@ fn a_long_trace_is_drawn_with_a_few_vertices_per_pixel_column() {
                 .collect()
         })
         .collect();
-    let w = convergence_run(&trace, Some(&per_uav), "long", dir.path().join("long")).unwrap();
+    let w = convergence_run(
+        &trace,
+        PerUav::Columns(&per_uav),
+        "long",
+        dir.path().join("long"),
+    )
+    .unwrap();
     check(&w, Target::DEFAULT_SIZE);
     let svg = std::fs::read_to_string(&w.svg).unwrap();
     let width = Target::DEFAULT_SIZE.0 as usize;
@@ -306,9 +318,44 @@ fn a_long_trace_is_drawn_with_a_few_vertices_per_pixel_column() {
 
     // An ordinary length is drawn whole: one vertex per iteration.
     let short: Vec<f64> = trace[..3_905].iter().map(|v| v.min(1e9)).collect();
-    let w = convergence_run(&short, None, "short", dir.path().join("short")).unwrap();
+    let w = convergence_run(&short, PerUav::None, "short", dir.path().join("short")).unwrap();
     let lines = polyline_vertices(&std::fs::read_to_string(&w.svg).unwrap());
     assert!(lines.contains(&3_905), "{lines:?}");
+}
+
+#[test]
+fn per_uav_rows_draw_as_the_same_columns() {
+    // `plan` hands over one row per iteration, shared while the best stands; `plot` reads
+    // columns from convergence.csv. Both must draw the same figure.
+    let dir = tempfile::tempdir().unwrap();
+    let columns: Vec<Vec<f64>> = (0..3)
+        .map(|u| {
+            (0..50)
+                .map(|k| 1000.0 / (1.0 + (k / (u + 2)) as f64) + u as f64)
+                .collect()
+        })
+        .collect();
+    let mut rows: Vec<std::sync::Arc<[f64]>> = Vec::new();
+    for k in 0..50 {
+        let row: Vec<f64> = columns.iter().map(|c| c[k]).collect();
+        match rows.last() {
+            Some(last) if **last == *row => rows.push(last.clone()),
+            _ => rows.push(row.into()),
+        }
+    }
+    let trace: Vec<f64> = (0..50)
+        .map(|k| columns.iter().map(|c| c[k]).sum())
+        .collect();
+    let a = convergence_run(&trace, PerUav::Columns(&columns), "t", dir.path().join("a")).unwrap();
+    let b = convergence_run(&trace, PerUav::Rows(&rows), "t", dir.path().join("b")).unwrap();
+    assert_eq!(
+        std::fs::read(&a.svg).unwrap(),
+        std::fs::read(&b.svg).unwrap()
+    );
+    assert_eq!(
+        std::fs::read(&a.png).unwrap(),
+        std::fs::read(&b.png).unwrap()
+    );
 }
 
 #[test]
@@ -360,7 +407,8 @@ fn failures_name_the_file() {
     assert!(matches!(e, PlotError::NoData { .. }));
     assert!(e.to_string().contains("x.png"), "{e}");
 
-    let e = convergence_run(&[f64::INFINITY], None, "t", dir.path().join("inf")).unwrap_err();
+    let e =
+        convergence_run(&[f64::INFINITY], PerUav::None, "t", dir.path().join("inf")).unwrap_err();
     assert!(e.to_string().contains("inf.png"), "{e}");
 
     // A file where the folder should be.

@@ -21,7 +21,7 @@ use swarmplan_experiment::store::read_records;
 use swarmplan_io::plan_file::{read_plan, Provenance};
 use swarmplan_io::scenario::{build_world, load_spec};
 use swarmplan_plot::{
-    bench_boxplots, comm_timeline, convergence_bench, convergence_run, top_view, view_3d,
+    bench_boxplots, comm_timeline, convergence_bench, convergence_run, top_view, view_3d, PerUav,
 };
 
 fn synthetic_records() -> Vec<RunRecord> {
@@ -106,7 +106,13 @@ fn paper_case1_gallery() {
     let per_uav: Vec<Vec<f64>> = (0..5)
         .map(|i| trace.iter().map(|v| v * (0.16 + 0.02 * i as f64)).collect())
         .collect();
-    convergence_run(&trace, Some(&per_uav), &title, dir.join("convergence_run")).unwrap();
+    convergence_run(
+        &trace,
+        PerUav::Columns(&per_uav),
+        &title,
+        dir.join("convergence_run"),
+    )
+    .unwrap();
 
     let records = match std::env::var("SWARMPLAN_GALLERY_BENCH") {
         Ok(b) => read_records(b.as_ref(), false).unwrap(),

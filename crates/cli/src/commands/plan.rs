@@ -261,14 +261,6 @@ pub fn budget(
     })
 }
 
-/// `trace[k][i]` (iteration, UAV) as one series per UAV.
-fn uav_series(trace: &[std::sync::Arc<[f64]>]) -> Vec<Vec<f64>> {
-    let n = trace.first().map_or(0, |row| row.len());
-    (0..n)
-        .map(|i| trace.iter().map(|row| row[i]).collect())
-        .collect()
-}
-
 pub fn run_command(args: &PlanArgs) -> Result<()> {
     let world = super::load_world(&args.scenario)?;
     let params = load_params(args.settings.params.as_ref(), args.settings.population)?;
@@ -480,7 +472,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             &world,
             &result.plan,
             &trace,
-            &uav_series(&uav_trace),
+            swarmplan_plot::PerUav::Rows(&uav_trace),
             &title,
         )?
     };

@@ -30,13 +30,12 @@ pub fn plan_figures(
     world: &World,
     plan: &Plan,
     trace: &[f64],
-    per_uav: &[Vec<f64>],
+    per_uav: swarmplan_plot::PerUav<'_>,
     title: &str,
 ) -> Result<Vec<PathBuf>> {
     let stem = |name: &str| dir.join(name);
     swarmplan_plot::top_view(world, plan, title, stem("top_view"))?;
     swarmplan_plot::view_3d(world, plan, title, stem("view_3d"))?;
-    let per_uav = (!per_uav.is_empty()).then_some(per_uav);
     swarmplan_plot::convergence_run(trace, per_uav, title, stem("convergence"))?;
     swarmplan_plot::comm_timeline(world, plan, title, stem("comm_timeline"))?;
     Ok(PLAN_FIGURES
@@ -155,7 +154,12 @@ pub fn run(args: &PlotArgs) -> Result<()> {
         } else {
             world.spec.name.clone()
         };
-        plan_figures(dir, &world, &plan, &trace, &per_uav, &title)?
+        let per_uav = if per_uav.is_empty() {
+            swarmplan_plot::PerUav::None
+        } else {
+            swarmplan_plot::PerUav::Columns(&per_uav)
+        };
+        plan_figures(dir, &world, &plan, &trace, per_uav, &title)?
     } else if dir.join("runs.jsonl").exists() {
         let records = read_records(dir, false)?;
         anyhow::ensure!(
