@@ -5,7 +5,7 @@
 
 use std::sync::Arc;
 
-use plotters::coord::Shift;
+use plotters::coord::{CoordTranslate, Shift};
 use plotters::prelude::*;
 
 use crate::axis::{draw_mesh, format_value, Axis};
@@ -228,25 +228,21 @@ impl Figure for ConvergenceRun<'_> {
             });
         }
         let key_len = s.off(24.0);
-        // The pixel column a vertex is drawn in, for thinning long series.
+        // The pixel column a vertex is drawn in, for thinning long series (a copy of the
+        // chart's mapping, so the chart stays free to draw).
         let columns = chart.plotting_area().dim_in_pixel().0;
-        let column_of = |x: f64, y: f64| chart.backend_coord(&(x, y)).0;
-        let thinned: Vec<Vec<Vec<(f64, f64)>>> = series
-            .iter()
-            .map(|series| {
-                let values = series.values.values();
-                let thin = thins(series.values.len(), columns).then_some(&column_of);
-                thinned_finite_runs(values, thin)
-            })
-            .collect();
-        for (series, mut runs) in series.into_iter().zip(thinned) {
+        let coord = chart.as_coord_spec().clone();
+        let column_of = |x: f64, y: f64| coord.translate(&(x, y)).0;
+        for series in series {
             let Series {
                 name,
                 single,
                 colour: c,
                 width: w,
-                values: _,
+                values,
             } = series;
+            let thin = thins(values.len(), columns).then_some(&column_of);
+            let mut runs = thinned_finite_runs(values.values(), thin);
             let label = match (name, runs.last().and_then(|r| r.last())) {
                 (Some(name), Some(p)) if single => {
                     Some(format!("{name} (final {})", format_value(p.1)))
