@@ -14,8 +14,8 @@ use crate::errors::{bad, to_py};
 use crate::{args, interrupt, scenario};
 
 /// Plans `scenario` and returns JSON with `run` (the CLI's `run.json`), `plan` (its
-/// `plan.json`), `convergence` (its `convergence.csv` rows), `uav_costs` (per iteration and
-/// UAV), `verdict` (the last line `plan` prints) and `notes`.
+/// `plan.json`), `convergence` (its `convergence.csv` rows), `uav_costs` (per row of
+/// `convergence` and UAV), `verdict` (the last line `plan` prints) and `notes`.
 #[pyfunction]
 #[pyo3(signature = (
     scenario="paper-case1", method="swarmplan", seed=None, evaluations=None, iterations=None,

@@ -316,8 +316,9 @@ def plan(
     Returns:
         A dict with ``run`` (``run.json``: method, seed, budget, evaluations and ``report``,
         the per-UAV report and the violations), ``plan`` (``plan.json``), ``feasible``,
-        ``violations``, ``convergence`` (a list of dicts per iteration), ``uav_costs``
-        (per iteration and UAV), ``verdict`` (the last line ``plan`` prints) and ``notes``.
+        ``violations``, ``convergence`` (a list of dicts per iteration; past 65,536
+        iterations every s-th, each dict naming its iteration), ``uav_costs``
+        (per row of ``convergence`` and UAV), ``verdict`` (the last line ``plan`` prints) and ``notes``.
     """
     out = json.loads(
         _native.plan(

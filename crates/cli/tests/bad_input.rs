@@ -828,3 +828,36 @@ fn folders_of_records_without_a_summary_say_which_command_completes_them() {
         ],
     );
 }
+
+#[test]
+fn a_convergence_file_with_iterations_out_of_order_is_refused_with_the_line() {
+    // A long run's convergence.csv skips iterations, so `plot` draws at the iteration
+    // column; a hand-edited file whose iterations go back is refused, not drawn as a zigzag.
+    let dir = tempfile::tempdir().unwrap();
+    common::plan_folder(dir.path(), &["--no-figures"]);
+    let csv = dir.path().join("convergence.csv");
+    std::fs::write(
+        &csv,
+        "iteration,evaluations,best_cost\n0,10,5\n4,20,3\n2,30,1\n",
+    )
+    .unwrap();
+    let folder = dir.path().display().to_string();
+    fails_with(
+        &["plot", &folder],
+        2,
+        &["convergence.csv: line 4: iteration 2 does not follow iteration 4"],
+    );
+    std::fs::write(&csv, "iteration,evaluations,best_cost\n0,10,5\n1.5,20,3\n").unwrap();
+    fails_with(
+        &["plot", &folder],
+        2,
+        &["line 3: expected a whole number in column iteration"],
+    );
+    // Rows that skip iterations draw.
+    std::fs::write(
+        &csv,
+        "iteration,evaluations,best_cost\n0,10,5\n4,20,3\n8,30,1\n",
+    )
+    .unwrap();
+    swarmplan().arg("plot").arg(dir.path()).assert().success();
+}

@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::cost::Assessment;
 use crate::method::Method;
+use crate::optim::thinned::Thinned;
 use crate::optim::{build, solve_watching, Budget, IterationRecord, OptimizerParams, Outcome};
 use crate::plan::Plan;
 use crate::planning::PlanningProblem;
@@ -82,10 +83,11 @@ fn finish(
     }
 }
 
-/// Per iteration, each UAV's cost in the best plan so far (see [`run_with_uav_trace`]).
-/// An iteration that keeps the best shares the row before it (one row per change of the
-/// best in memory, not per iteration: 100 UAVs over a million iterations would otherwise
-/// hold 800 MB).
+/// Per iteration, each UAV's cost in the best plan so far (see [`run_with_uav_trace`]),
+/// row k beside record k of the outcome's trace (thinned alike past
+/// [`TRACE_CAP`](crate::optim::thinned::TRACE_CAP) iterations). An iteration that keeps the
+/// best shares the row before it (one row per change of the best in memory, not per
+/// iteration: 100 UAVs over a million iterations would otherwise hold 800 MB).
 pub type UavTrace = Vec<Arc<[f64]>>;
 
 /// [`run`], also recording after initialisation and every iteration each UAV's cost (its
@@ -100,7 +102,8 @@ pub fn run_with_uav_trace(
     progress: &mut dyn FnMut(&IterationRecord),
 ) -> (RunResult, UavTrace) {
     let problem = PlanningProblem::new(world, req.method.encoding, req.method.init);
-    let mut trace: UavTrace = Vec::new();
+    let mut trace: Thinned<Arc<[f64]>> = Thinned::default();
+    let mut previous: Option<Arc<[f64]>> = None;
     let mut observing = std::time::Duration::ZERO;
     // The best plan changes in few iterations (and under coevolution in one UAV at a
     // time): an unchanged best repeats its row, and the buffers persist so that proximity
@@ -111,7 +114,7 @@ pub fn run_with_uav_trace(
     let mut observer = |r: &IterationRecord, best_x: &[f64]| {
         let t0 = Instant::now();
         if !best_x.is_empty() {
-            let row = match trace.last() {
+            let row: Arc<[f64]> = match &previous {
                 Some(row) if last_best.as_slice() == best_x => Arc::clone(row),
                 _ => {
                     let mut sink =
@@ -123,7 +126,8 @@ pub fn run_with_uav_trace(
                     scratch.reports().iter().map(|u| u.cost).collect()
                 }
             };
-            trace.push(row);
+            previous = Some(Arc::clone(&row));
+            trace.push(r, row);
         }
         progress(r);
         observing += t0.elapsed();
@@ -131,5 +135,8 @@ pub fn run_with_uav_trace(
     let start = Instant::now();
     let outcome = search(&problem, req, &mut observer);
     let seconds = (start.elapsed() - observing).as_secs_f64();
-    (finish(world, req, &problem, outcome, seconds), trace)
+    (
+        finish(world, req, &problem, outcome, seconds),
+        trace.into_vec(),
+    )
 }

@@ -50,7 +50,8 @@ pub struct RunRecord {
     pub evaluations: u64,
     pub iterations: usize,
     pub seconds: f64,
-    /// Best cost per UAV after initialisation and after each iteration.
+    /// Best cost per UAV after initialisation and after each iteration (past
+    /// `TRACE_CAP` iterations, every s-th: `swarmplan_core::optim::thinned`).
     pub convergence: Vec<f64>,
     /// Evaluations spent at each point of `convergence` (empty in records written before
     /// it existed), so methods with different evaluations per iteration compare over

@@ -30,6 +30,14 @@ pub enum PerUav<'a> {
 }
 
 impl<'a> PerUav<'a> {
+    /// The longest series' length.
+    fn len(self) -> usize {
+        (0..self.uavs())
+            .map(|i| self.column(i).len())
+            .max()
+            .unwrap_or(0)
+    }
+
     fn uavs(self) -> usize {
         match self {
             Self::None => 0,
@@ -76,10 +84,13 @@ impl<'a> Column<'a> {
 }
 
 /// Writes the convergence of one run to `out`: `trace[k]` is the best total cost after
-/// iteration k (k = 0: after initialisation); `per_uav` gives each UAV's cost in the best
-/// plan after iteration k. Non-finite values (and `f64::MAX`, which records use for them)
-/// are left out of the lines.
+/// iteration `iterations[k]` (0: after initialisation; `None`: after iteration k, every
+/// iteration given); `per_uav` gives each UAV's cost in the best plan at the same
+/// iterations. A long run's trace is thinned to every s-th iteration
+/// (`swarmplan_core::optim::thinned`), hence the iteration numbers. Non-finite values (and
+/// `f64::MAX`, which records use for them) are left out of the lines.
 pub fn convergence_run(
+    iterations: Option<&[usize]>,
     trace: &[f64],
     per_uav: PerUav<'_>,
     title: &str,
@@ -96,7 +107,17 @@ pub fn convergence_run(
     if all().all(|v| !v.is_finite()) {
         return Err(no_data(&target, "the convergence trace has no finite cost"));
     }
+    if let Some(it) = iterations {
+        let rows = trace.len().max(per_uav.len());
+        if it.len() < rows {
+            return Err(no_data(
+                &target,
+                format!("{} iteration numbers for {rows} rows of costs", it.len()),
+            ));
+        }
+    }
     let fig = ConvergenceRun {
+        iterations,
         trace,
         per_uav,
         title,
@@ -106,6 +127,7 @@ pub fn convergence_run(
 }
 
 struct ConvergenceRun<'a> {
+    iterations: Option<&'a [usize]>,
     trace: &'a [f64],
     per_uav: PerUav<'a>,
     title: &'a str,
@@ -124,12 +146,14 @@ struct Series<'a> {
 
 /// Maximal runs of finite values of `v` as (iteration, value) polylines.
 pub(crate) fn finite_runs(v: impl IntoIterator<Item = f64>) -> Vec<Vec<(f64, f64)>> {
-    thinned_finite_runs(v, None::<&fn(f64, f64) -> i32>)
+    thinned_finite_runs(None, v, None::<&fn(f64, f64) -> i32>)
 }
 
-/// [`finite_runs`], each run thinned by M4 ([`crate::decimate`]) on the pixel columns
-/// `column_of(x, y)` when given; the full runs are never held.
+/// [`finite_runs`] at `iterations` (value k at iteration k when `None`), each run thinned
+/// by M4 ([`crate::decimate`]) on the pixel columns `column_of(x, y)` when given; the full
+/// runs are never held.
 fn thinned_finite_runs<F: Fn(f64, f64) -> i32>(
+    iterations: Option<&[usize]>,
     v: impl IntoIterator<Item = f64>,
     column_of: Option<&F>,
 ) -> Vec<Vec<(f64, f64)>> {
@@ -138,11 +162,12 @@ fn thinned_finite_runs<F: Fn(f64, f64) -> i32>(
     for (k, x) in v.into_iter().enumerate() {
         let x = cost(x);
         if x.is_finite() {
+            let at = iterations.map_or(k, |it| it[k]);
             cur.get_or_insert_with(|| match column_of {
                 Some(f) => Open::Thinned(M4::new(f)),
                 None => Open::Every(Vec::new()),
             })
-            .push(k, (k as f64, x));
+            .push(k, (at as f64, x));
         } else if let Some(run) = cur.take() {
             out.push(run.finish());
         }
@@ -189,17 +214,13 @@ impl Figure for ConvergenceRun<'_> {
         let s = Scale::of(root.dim_in_pixel());
         let body = root.titled(self.title, s.title())?;
         let n = self.per_uav.uavs();
-        let len = (0..n)
-            .map(|i| self.per_uav.column(i).len())
-            .chain([self.trace.len()])
-            .max()
-            .unwrap_or(0);
-        let mut chart = crate::axis::line_chart(
-            &body,
-            s,
-            Axis::linear(0.0, (len.max(2) - 1) as f64),
-            self.y.clone(),
-        )?;
+        let len = self.per_uav.len().max(self.trace.len());
+        let last = match (self.iterations, len) {
+            (Some(it), 1..) => it[len - 1].max(1),
+            _ => len.max(2) - 1,
+        };
+        let mut chart =
+            crate::axis::line_chart(&body, s, Axis::linear(0.0, last as f64), self.y.clone())?;
         draw_mesh(
             &mut chart,
             s,
@@ -242,7 +263,7 @@ impl Figure for ConvergenceRun<'_> {
                 values,
             } = series;
             let thin = thins(values.len(), columns).then_some(&column_of);
-            let mut runs = thinned_finite_runs(values.values(), thin);
+            let mut runs = thinned_finite_runs(self.iterations, values.values(), thin);
             let label = match (name, runs.last().and_then(|r| r.last())) {
                 (Some(name), Some(p)) if single => {
                     Some(format!("{name} (final {})", format_value(p.1)))

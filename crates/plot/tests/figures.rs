@@ -219,6 +219,7 @@ fn every_figure_renders_on_the_tiny_scenario() {
     ];
     check(
         &convergence_run(
+            None,
             &trace,
             PerUav::Columns(&per_uav),
             title,
@@ -233,7 +234,7 @@ fn every_figure_renders_on_the_tiny_scenario() {
     penalised[1] = f64::MAX;
     let small = Target::new(dir.path().join("conv_small")).with_size(800, 600);
     check(
-        &convergence_run(&penalised, PerUav::None, title, small).unwrap(),
+        &convergence_run(None, &penalised, PerUav::None, title, small).unwrap(),
         (800, 600),
     );
 
@@ -299,6 +300,7 @@ fn a_long_trace_is_drawn_with_a_few_vertices_per_pixel_column() {
         })
         .collect();
     let w = convergence_run(
+        None,
         &trace,
         PerUav::Columns(&per_uav),
         "long",
@@ -318,9 +320,82 @@ fn a_long_trace_is_drawn_with_a_few_vertices_per_pixel_column() {
 
     // An ordinary length is drawn whole: one vertex per iteration.
     let short: Vec<f64> = trace[..3_905].iter().map(|v| v.min(1e9)).collect();
-    let w = convergence_run(&short, PerUav::None, "short", dir.path().join("short")).unwrap();
+    let w = convergence_run(
+        None,
+        &short,
+        PerUav::None,
+        "short",
+        dir.path().join("short"),
+    )
+    .unwrap();
     let lines = polyline_vertices(&std::fs::read_to_string(&w.svg).unwrap());
     assert!(lines.contains(&3_905), "{lines:?}");
+}
+
+/// The polylines' vertices of an SVG, as (x, y) pixel pairs.
+fn polyline_points(svg: &str) -> Vec<Vec<(i64, i64)>> {
+    svg.split("<polyline")
+        .skip(1)
+        .filter_map(|p| {
+            let start = p.find("points=\"")? + 8;
+            let end = start + p[start..].find('"')?;
+            Some(
+                p[start..end]
+                    .split_whitespace()
+                    .filter_map(|xy| {
+                        let (x, y) = xy.split_once(',')?;
+                        Some((x.parse().ok()?, y.parse().ok()?))
+                    })
+                    .collect(),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn a_thinned_trace_is_drawn_at_its_iterations() {
+    // A long run keeps every 4th iteration and its last (`swarmplan_core::optim::thinned`):
+    // drawn at those iteration numbers, the line spans the axis of the whole run and its
+    // vertices stand where the full trace's do.
+    let dir = tempfile::tempdir().unwrap();
+    let n = 2_001;
+    let full: Vec<f64> = (0..n)
+        .map(|k| 100.0 + 900.0 / (1.0 + (k / 50) as f64))
+        .collect();
+    let iterations: Vec<usize> = (0..n).filter(|k| k % 4 == 0 || *k == n - 1).collect();
+    let thinned: Vec<f64> = iterations.iter().map(|&k| full[k]).collect();
+    let a = convergence_run(None, &full, PerUav::None, "t", dir.path().join("full")).unwrap();
+    let b = convergence_run(
+        Some(&iterations),
+        &thinned,
+        PerUav::None,
+        "t",
+        dir.path().join("thinned"),
+    )
+    .unwrap();
+    let longest = |svg: &str| {
+        polyline_points(svg)
+            .into_iter()
+            .max_by_key(Vec::len)
+            .unwrap()
+    };
+    let a = longest(&std::fs::read_to_string(&a.svg).unwrap());
+    let b = longest(&std::fs::read_to_string(&b.svg).unwrap());
+    assert_eq!(b.len(), iterations.len());
+    assert_eq!((a.first(), a.last()), (b.first(), b.last()));
+    for (k, p) in iterations.iter().zip(&b) {
+        assert_eq!(a[*k], *p, "iteration {k}");
+    }
+    // Fewer iteration numbers than costs: an error, not a panic.
+    let e = convergence_run(
+        Some(&iterations[..10]),
+        &thinned,
+        PerUav::None,
+        "t",
+        dir.path().join("short"),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("iteration numbers"), "{e}");
 }
 
 #[test]
@@ -346,8 +421,15 @@ fn per_uav_rows_draw_as_the_same_columns() {
     let trace: Vec<f64> = (0..50)
         .map(|k| columns.iter().map(|c| c[k]).sum())
         .collect();
-    let a = convergence_run(&trace, PerUav::Columns(&columns), "t", dir.path().join("a")).unwrap();
-    let b = convergence_run(&trace, PerUav::Rows(&rows), "t", dir.path().join("b")).unwrap();
+    let a = convergence_run(
+        None,
+        &trace,
+        PerUav::Columns(&columns),
+        "t",
+        dir.path().join("a"),
+    )
+    .unwrap();
+    let b = convergence_run(None, &trace, PerUav::Rows(&rows), "t", dir.path().join("b")).unwrap();
     assert_eq!(
         std::fs::read(&a.svg).unwrap(),
         std::fs::read(&b.svg).unwrap()
@@ -407,8 +489,14 @@ fn failures_name_the_file() {
     assert!(matches!(e, PlotError::NoData { .. }));
     assert!(e.to_string().contains("x.png"), "{e}");
 
-    let e =
-        convergence_run(&[f64::INFINITY], PerUav::None, "t", dir.path().join("inf")).unwrap_err();
+    let e = convergence_run(
+        None,
+        &[f64::INFINITY],
+        PerUav::None,
+        "t",
+        dir.path().join("inf"),
+    )
+    .unwrap_err();
     assert!(e.to_string().contains("inf.png"), "{e}");
 
     // A file where the folder should be.

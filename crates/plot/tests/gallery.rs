@@ -107,6 +107,7 @@ fn paper_case1_gallery() {
         .map(|i| trace.iter().map(|v| v * (0.16 + 0.02 * i as f64)).collect())
         .collect();
     convergence_run(
+        None,
         &trace,
         PerUav::Columns(&per_uav),
         &title,

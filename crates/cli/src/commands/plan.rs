@@ -399,7 +399,8 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     )
     .with_context(|| format!("{}: cannot write", plan_path.display()))?;
     let conv_path = out.join("convergence.csv");
-    // Streamed: a long run's trace (a row per iteration, a column per UAV) can be large.
+    // Streamed: a long run's trace (a row per kept iteration, a column per UAV) can be
+    // large (up to `TRACE_CAP` rows, `swarmplan_core::optim::thinned`).
     write_atomic_with(&conv_path, |csv| {
         let n = world.uav_count();
         write!(
@@ -463,6 +464,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     write_atomic(&scenario_path, to_toml(&written_spec).as_bytes())
         .with_context(|| format!("{}: cannot write", scenario_path.display()))?;
     let trace: Vec<f64> = result.outcome.trace.iter().map(|r| r.best_cost).collect();
+    let iterations: Vec<usize> = result.outcome.trace.iter().map(|r| r.iteration).collect();
     let title = super::plot::plan_title(&world.spec.name, &artifact);
     let figures = if args.no_figures {
         Vec::new()
@@ -471,6 +473,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             out,
             &world,
             &result.plan,
+            Some(&iterations),
             &trace,
             swarmplan_plot::PerUav::Rows(&uav_trace),
             &title,

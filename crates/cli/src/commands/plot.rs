@@ -24,11 +24,13 @@ pub struct PlotArgs {
 /// The stems of the figures of one plan (each written as .png and .svg).
 pub const PLAN_FIGURES: [&str; 4] = ["top_view", "view_3d", "convergence", "comm_timeline"];
 
-/// The figures of one plan; `title` names scenario, algorithm and seed.
+/// The figures of one plan; `title` names scenario, algorithm and seed; `trace[k]` is the
+/// best cost after iteration `iterations[k]` (after iteration k when `None`).
 pub fn plan_figures(
     dir: &Path,
     world: &World,
     plan: &Plan,
+    iterations: Option<&[usize]>,
     trace: &[f64],
     per_uav: swarmplan_plot::PerUav<'_>,
     title: &str,
@@ -36,7 +38,7 @@ pub fn plan_figures(
     let stem = |name: &str| dir.join(name);
     swarmplan_plot::top_view(world, plan, title, stem("top_view"))?;
     swarmplan_plot::view_3d(world, plan, title, stem("view_3d"))?;
-    swarmplan_plot::convergence_run(trace, per_uav, title, stem("convergence"))?;
+    swarmplan_plot::convergence_run(iterations, trace, per_uav, title, stem("convergence"))?;
     swarmplan_plot::comm_timeline(world, plan, title, stem("comm_timeline"))?;
     Ok(PLAN_FIGURES
         .iter()
@@ -83,9 +85,17 @@ pub fn bench_figures(dir: &Path, records: &[RunRecord]) -> Result<Vec<PathBuf>> 
     Ok(out)
 }
 
-/// Reads `convergence.csv` of a plan folder: the best_cost column and, when present, one
-/// `uavI_cost` column per UAV (as series).
-fn read_trace(path: &Path) -> Result<(Vec<f64>, Vec<Vec<f64>>)> {
+/// A plan folder's `convergence.csv`, as columns.
+struct TraceColumns {
+    /// The iteration column, when the file has one (a long run's rows skip iterations).
+    iterations: Option<Vec<usize>>,
+    total: Vec<f64>,
+    per_uav: Vec<Vec<f64>>,
+}
+
+/// Reads `convergence.csv` of a plan folder: the iteration and best_cost columns and, when
+/// present, one `uavI_cost` column per UAV (as series).
+fn read_trace(path: &Path) -> Result<TraceColumns> {
     let text = std::fs::read_to_string(path)
         .with_context(|| format!("{}: cannot read", path.display()))?;
     let mut lines = text.lines();
@@ -94,32 +104,57 @@ fn read_trace(path: &Path) -> Result<(Vec<f64>, Vec<Vec<f64>>)> {
         .iter()
         .position(|h| *h == "best_cost")
         .with_context(|| format!("{}: no best_cost column in the header", path.display()))?;
+    let iteration_col = header.iter().position(|h| *h == "iteration");
     let uav_cols: Vec<usize> = (0..header.len())
         .filter(|c| header[*c].starts_with("uav") && header[*c].ends_with("_cost"))
         .collect();
+    let mut iterations = iteration_col.map(|_| Vec::new());
     let mut total = Vec::new();
     let mut per_uav = vec![Vec::new(); uav_cols.len()];
     for (i, l) in lines.enumerate() {
         let fields: Vec<&str> = l.split(',').collect();
+        let line = i + 2;
         let num = |c: usize| {
             fields
                 .get(c)
                 .and_then(|v| v.parse::<f64>().ok())
                 .with_context(|| {
                     format!(
-                        "{}: line {}: expected a number in column {}",
+                        "{}: line {line}: expected a number in column {}",
                         path.display(),
-                        i + 2,
                         header[c]
                     )
                 })
         };
+        if let (Some(c), Some(its)) = (iteration_col, iterations.as_mut()) {
+            let k = fields
+                .get(c)
+                .and_then(|v| v.parse::<usize>().ok())
+                .with_context(|| {
+                    format!(
+                        "{}: line {line}: expected a whole number in column iteration",
+                        path.display()
+                    )
+                })?;
+            if let Some(&before) = its.last() {
+                anyhow::ensure!(
+                    k > before,
+                    "{}: line {line}: iteration {k} does not follow iteration {before}",
+                    path.display()
+                );
+            }
+            its.push(k);
+        }
         total.push(num(col)?);
         for (series, c) in per_uav.iter_mut().zip(&uav_cols) {
             series.push(num(*c)?);
         }
     }
-    Ok((total, per_uav))
+    Ok(TraceColumns {
+        iterations,
+        total,
+        per_uav,
+    })
 }
 
 /// The title of a plan's figures: scenario, method (its three parts when it is no preset),
@@ -146,7 +181,11 @@ pub fn run(args: &PlotArgs) -> Result<()> {
         );
         let world = build_world(&load_spec(&scenario.display().to_string())?, None)?;
         let plan = read_plan(&dir.join("plan.json"), &world, Provenance::MustMatch)?;
-        let (trace, per_uav) = read_trace(&dir.join("convergence.csv"))?;
+        let TraceColumns {
+            iterations,
+            total: trace,
+            per_uav,
+        } = read_trace(&dir.join("convergence.csv"))?;
         let run_json = dir.join("run.json");
         let title = if run_json.exists() {
             let run = RunArtifact::read(&run_json)?;
@@ -159,7 +198,15 @@ pub fn run(args: &PlotArgs) -> Result<()> {
         } else {
             swarmplan_plot::PerUav::Columns(&per_uav)
         };
-        plan_figures(dir, &world, &plan, &trace, per_uav, &title)?
+        plan_figures(
+            dir,
+            &world,
+            &plan,
+            iterations.as_deref(),
+            &trace,
+            per_uav,
+            &title,
+        )?
     } else if dir.join("runs.jsonl").exists() {
         let records = read_records(dir, false)?;
         anyhow::ensure!(

@@ -94,6 +94,7 @@ mod solve;
 mod swarm;
 #[cfg(test)]
 mod test_problems;
+pub mod thinned;
 
 pub use abc::{Abc, AbcParams};
 pub use cmaes::{Cmaes, CmaesParams, Covariance};

@@ -147,7 +147,9 @@ pub struct Outcome {
     /// Steps taken after initialisation (the last may have been cut short by the budget).
     pub iterations: usize,
     pub termination: Termination,
-    /// One record after initialisation and one per step.
+    /// One record after initialisation and one per step; past
+    /// [`TRACE_CAP`](super::thinned::TRACE_CAP) steps, every s-th (s a power of two), the
+    /// first feasible and the last ([`super::thinned`]).
     pub trace: Vec<IterationRecord>,
 }
 
@@ -179,7 +181,8 @@ pub fn solve_watching(
     ev.set_iteration(0, max_steps);
     optimizer.init(&mut ev, rng);
 
-    let mut trace = Vec::with_capacity(max_iterations.unwrap_or(planned).min(1 << 16) + 1);
+    let mut trace = super::thinned::Thinned::default();
+    trace.reserve(max_iterations.unwrap_or(planned) + 1);
     let mut emit = |iteration: usize, ev: &Evaluator<'_>, opt: &dyn Optimizer| {
         let (best_x, best) = opt.best();
         let rec = IterationRecord {
@@ -189,7 +192,7 @@ pub fn solve_watching(
             best_violation: best.violation,
         };
         observer(&rec, best_x);
-        trace.push(rec);
+        trace.push(&rec, rec);
     };
     emit(0, &ev, optimizer);
 
@@ -235,7 +238,7 @@ pub fn solve_watching(
         evaluations: ev.count(),
         iterations: iteration,
         termination,
-        trace,
+        trace: trace.into_vec(),
     }
 }
 
@@ -295,6 +298,33 @@ mod tests {
         let out = solve(&p, &mut Idle, Budget::iterations(4), &mut rng, &mut |_| {});
         assert_eq!(out.termination, Termination::MaxIterations);
         assert_eq!(out.trace.len(), 5);
+    }
+
+    #[test]
+    fn a_long_run_keeps_a_bounded_trace_that_ends_at_its_last_iteration() {
+        use super::super::thinned::TRACE_CAP;
+        let p = Zero(vec![crate::problem::Bound::new(-1.0, 1.0)]);
+        let mut rng = crate::rng::rng_from_seed(0);
+        let steps = 3 * TRACE_CAP + 7;
+        let mut seen = 0;
+        let out = solve(
+            &p,
+            &mut Idle,
+            Budget::iterations(steps),
+            &mut rng,
+            &mut |_| {
+                seen += 1;
+            },
+        );
+        assert_eq!(seen, steps + 1, "the observer still sees every iteration");
+        assert!(out.trace.len() <= TRACE_CAP + 1, "{}", out.trace.len());
+        assert!(out.trace.len() >= TRACE_CAP / 2, "{}", out.trace.len());
+        assert_eq!(out.trace.first().map(|r| r.iteration), Some(0));
+        assert_eq!(out.trace.last().map(|r| r.iteration), Some(steps));
+        assert!(out
+            .trace
+            .windows(2)
+            .all(|w| w[0].iteration < w[1].iteration));
     }
 
     #[test]
