@@ -315,15 +315,18 @@ impl CommTimeline<'_> {
             format_value(total(Contact::Relayed)),
             format_value(total(Contact::Out)),
         )));
+        // Each UAV's seconds counted once (a count walks the whole timeline).
+        let keys: Vec<(f64, f64)> = (0..n)
+            .map(|i| {
+                (
+                    self.trace.seconds(i, Contact::Out),
+                    self.trace.seconds(i, Contact::Relayed),
+                )
+            })
+            .collect();
         let mut order: Vec<usize> = (0..n).collect();
-        let key = |i: usize| {
-            (
-                self.trace.seconds(i, Contact::Out),
-                self.trace.seconds(i, Contact::Relayed),
-            )
-        };
         order.sort_by(|&a, &b| {
-            let (ka, kb) = (key(a), key(b));
+            let (ka, kb) = (keys[a], keys[b]);
             kb.0.total_cmp(&ka.0)
                 .then(kb.1.total_cmp(&ka.1))
                 .then(a.cmp(&b))
