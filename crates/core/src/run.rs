@@ -91,8 +91,9 @@ fn finish(
 pub type UavTrace = Vec<Arc<[f64]>>;
 
 /// [`run`], also recording after initialisation and every iteration each UAV's cost (its
-/// weighted terms, without the penalty) in the best plan so far: `trace[k][i]` for
-/// iteration k and UAV i. The optimizer sees exactly the same evaluations; the extra
+/// weighted terms, without the penalty) in the best plan so far: `trace[k][i]` for UAV i
+/// at the iteration of record k of the outcome's trace (iteration k unless the run passed
+/// [`TRACE_CAP`](crate::optim::thinned::TRACE_CAP) iterations). The optimizer sees exactly the same evaluations; the extra
 /// assessments are left out of `seconds`.
 /// `progress` is called after initialisation and every iteration too (for progress output).
 #[must_use]
@@ -113,8 +114,12 @@ pub fn run_with_uav_trace(
     let mut scratch = crate::cost::Scratch::default();
     let mut observer = |r: &IterationRecord, best_x: &[f64]| {
         let t0 = Instant::now();
-        if !best_x.is_empty() {
-            let row: Arc<[f64]> = match &previous {
+        // Every record gets a row (none when there is no best yet), so that this trace
+        // thins exactly as the loop's and row k stays beside record k.
+        let row: Arc<[f64]> = if best_x.is_empty() {
+            Arc::from(Vec::new())
+        } else {
+            match &previous {
                 Some(row) if last_best.as_slice() == best_x => Arc::clone(row),
                 _ => {
                     let mut sink =
@@ -125,10 +130,10 @@ pub fn run_with_uav_trace(
                     last_best.extend_from_slice(best_x);
                     scratch.reports().iter().map(|u| u.cost).collect()
                 }
-            };
-            previous = Some(Arc::clone(&row));
-            trace.push(r, row);
-        }
+            }
+        };
+        previous = Some(Arc::clone(&row));
+        trace.push(r, row);
         progress(r);
         observing += t0.elapsed();
     };

@@ -20,9 +20,10 @@ use crate::style::{self, Scale};
 pub enum PerUav<'a> {
     /// No per-UAV lines.
     None,
-    /// One series per UAV: `[i][k]` is UAV i's cost after iteration k.
+    /// One series per UAV: `[i][k]` is UAV i's cost at row k of the trace (after
+    /// iteration k, or after the k-th of the iteration numbers given).
     Columns(&'a [Vec<f64>]),
-    /// One row per iteration: `[k][i]`. `plan`'s trace ([`swarmplan_core::run::UavTrace`])
+    /// One row per row of the trace: `[k][i]`. `plan`'s trace ([`swarmplan_core::run::UavTrace`])
     /// shares a row while the best stands, so drawing from it copies nothing: a column per
     /// UAV would hold 8 bytes per UAV and iteration (100 UAVs run about 360 iterations a
     /// second, so about 1 GB after an hour).
@@ -42,7 +43,10 @@ impl<'a> PerUav<'a> {
         match self {
             Self::None => 0,
             Self::Columns(c) => c.len(),
-            Self::Rows(r) => r.first().map_or(0, |row| row.len()),
+            Self::Rows(r) => r
+                .iter()
+                .find(|row| !row.is_empty())
+                .map_or(0, |row| row.len()),
         }
     }
 

@@ -364,27 +364,41 @@ fn a_thinned_trace_is_drawn_at_its_iterations() {
         .collect();
     let iterations: Vec<usize> = (0..n).filter(|k| k % 4 == 0 || *k == n - 1).collect();
     let thinned: Vec<f64> = iterations.iter().map(|&k| full[k]).collect();
-    let a = convergence_run(None, &full, PerUav::None, "t", dir.path().join("full")).unwrap();
+    // One UAV's line too, from `plan`'s rows.
+    let rows = |ks: &mut dyn Iterator<Item = usize>| -> Vec<std::sync::Arc<[f64]>> {
+        ks.map(|k| std::sync::Arc::from(vec![full[k] / 2.0 + (k % 7) as f64]))
+            .collect()
+    };
+    let (full_rows, thinned_rows) = (rows(&mut (0..n)), rows(&mut iterations.iter().copied()));
+    let a = convergence_run(
+        None,
+        &full,
+        PerUav::Rows(&full_rows),
+        "t",
+        dir.path().join("full"),
+    )
+    .unwrap();
     let b = convergence_run(
         Some(&iterations),
         &thinned,
-        PerUav::None,
+        PerUav::Rows(&thinned_rows),
         "t",
         dir.path().join("thinned"),
     )
     .unwrap();
-    let longest = |svg: &str| {
-        polyline_points(svg)
+    let lines = |svg: &std::path::Path, len: usize| -> Vec<Vec<(i64, i64)>> {
+        polyline_points(&std::fs::read_to_string(svg).unwrap())
             .into_iter()
-            .max_by_key(Vec::len)
-            .unwrap()
+            .filter(|l| l.len() == len)
+            .collect()
     };
-    let a = longest(&std::fs::read_to_string(&a.svg).unwrap());
-    let b = longest(&std::fs::read_to_string(&b.svg).unwrap());
-    assert_eq!(b.len(), iterations.len());
-    assert_eq!((a.first(), a.last()), (b.first(), b.last()));
-    for (k, p) in iterations.iter().zip(&b) {
-        assert_eq!(a[*k], *p, "iteration {k}");
+    let (a, b) = (lines(&a.svg, n), lines(&b.svg, iterations.len()));
+    assert_eq!((a.len(), b.len()), (2, 2), "the UAV's line and the total");
+    for (a, b) in a.iter().zip(&b) {
+        assert_eq!((a.first(), a.last()), (b.first(), b.last()));
+        for (k, p) in iterations.iter().zip(b) {
+            assert_eq!(a[*k], *p, "iteration {k}");
+        }
     }
     // Fewer iteration numbers than costs: an error, not a panic.
     let e = convergence_run(

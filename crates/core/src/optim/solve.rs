@@ -182,7 +182,7 @@ pub fn solve_watching(
     optimizer.init(&mut ev, rng);
 
     let mut trace = super::thinned::Thinned::default();
-    trace.reserve(max_iterations.unwrap_or(planned) + 1);
+    trace.reserve(max_iterations.unwrap_or(planned).saturating_add(1));
     let mut emit = |iteration: usize, ev: &Evaluator<'_>, opt: &dyn Optimizer| {
         let (best_x, best) = opt.best();
         let rec = IterationRecord {

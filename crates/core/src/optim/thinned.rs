@@ -7,8 +7,8 @@
 //! `convergence.csv` of gigabytes. Runs within the cap ([`TRACE_CAP`] iterations; the
 //! default budgets make a few thousand) keep every record, as before. Past it the stride s
 //! doubles (1, 2, 4, ...) and only iterations that are multiples of s stay, so the trace
-//! holds between `TRACE_CAP / 2` and `TRACE_CAP` records, evenly spread, whatever the run's
-//! length. Kept besides, whatever the stride: the last record (the run's end) and the first
+//! holds about `TRACE_CAP / 2` to `TRACE_CAP + 1` records, evenly spread, whatever the
+//! run's length. Kept besides, whatever the stride: the last record (the run's end) and the first
 //! record whose best is feasible (so the evaluations to first feasibility stay exact).
 //!
 //! The rule depends only on the iteration numbers and the records' feasibility, so two
@@ -17,7 +17,8 @@
 
 use super::IterationRecord;
 
-/// The most records a trace holds before its stride doubles.
+/// The last iteration a trace keeps whole: it holds iterations 0 to `TRACE_CAP` (that many
+/// records plus one) before its stride doubles.
 pub const TRACE_CAP: usize = 1 << 16;
 
 /// Values of a run, one per iteration offered, thinned as the module describes.
@@ -39,7 +40,8 @@ impl<T> Default for Thinned<T> {
 }
 
 impl<T> Thinned<T> {
-    /// A trace that holds at most `cap` (at least 2) records on its stride.
+    /// A trace that keeps iterations 0 to `cap` (at least 2) whole, and then at most
+    /// `cap + 1` records on its stride (and the latest).
     #[must_use]
     pub fn with_cap(cap: usize) -> Self {
         Self {
@@ -61,18 +63,25 @@ impl<T> Thinned<T> {
     pub fn push(&mut self, rec: &IterationRecord, value: T) {
         let first_feasible = !self.seen_feasible && rec.best_violation == 0.0;
         self.seen_feasible |= first_feasible;
-        if first_feasible || rec.iteration.is_multiple_of(self.stride) {
-            self.latest = None;
-            self.kept.push((rec.iteration, first_feasible, value));
-            if self.kept.len() > self.cap {
-                self.stride *= 2;
-                let stride = self.stride;
-                self.kept
-                    .retain(|(k, pinned, _)| *pinned || k.is_multiple_of(stride));
-            }
-        } else {
+        let kept = |stride: usize| first_feasible || rec.iteration.is_multiple_of(stride);
+        if !kept(self.stride) {
             self.latest = Some((rec.iteration, value));
+            return;
         }
+        if self.kept.len() > self.cap {
+            // Full (iterations 0 to the cap at stride 1): double the stride first, so that
+            // a record off the new stride becomes the latest instead of being dropped.
+            self.stride *= 2;
+            let stride = self.stride;
+            self.kept
+                .retain(|(k, pinned, _)| *pinned || k.is_multiple_of(stride));
+            if !kept(stride) {
+                self.latest = Some((rec.iteration, value));
+                return;
+            }
+        }
+        self.latest = None;
+        self.kept.push((rec.iteration, first_feasible, value));
     }
 
     /// Keeps only every `stride`-th iteration from now on (1 while the trace is within its
@@ -115,7 +124,9 @@ mod tests {
     #[test]
     fn a_trace_within_its_cap_keeps_every_iteration() {
         assert_eq!(kept(50, 64, 7), (0..50).collect::<Vec<_>>());
-        assert_eq!(kept(64, 64, usize::MAX), (0..64).collect::<Vec<_>>());
+        // Iterations 0 to the cap: every one.
+        assert_eq!(kept(65, 64, usize::MAX), (0..65).collect::<Vec<_>>());
+        assert_ne!(kept(66, 64, usize::MAX), (0..66).collect::<Vec<_>>());
     }
 
     #[test]
@@ -140,16 +151,25 @@ mod tests {
     }
 
     #[test]
-    fn two_traces_of_one_run_keep_the_same_iterations() {
-        let mut a = Thinned::with_cap(16);
-        let mut b = Thinned::with_cap(16);
-        for k in 0..10_000 {
-            let r = rec(k, 4_321);
-            a.push(&r, k);
-            b.push(&r, format!("row {k}"));
+    fn every_length_ends_at_its_last_iteration_and_keeps_its_first_feasible() {
+        // The record that fills the trace can fall off the doubled stride (the pinned
+        // record shifts the count): it must stay as the latest, not vanish.
+        for feasible_from in [0, 3, 777, usize::MAX] {
+            let mut t = Thinned::with_cap(16);
+            for k in 0..3_000 {
+                t.push(&rec(k, feasible_from), k);
+                let v = t.clone().into_vec();
+                assert_eq!(
+                    v.last(),
+                    Some(&k),
+                    "after {k} (feasible from {feasible_from})"
+                );
+                assert!(v.len() <= 16 + 2, "{} records", v.len());
+                if feasible_from <= k {
+                    assert!(v.contains(&feasible_from));
+                }
+            }
         }
-        let b: Vec<String> = b.into_vec();
-        let a: Vec<String> = a.into_vec().iter().map(|k| format!("row {k}")).collect();
-        assert_eq!(a, b);
+        assert_eq!(kept(1_009, 64, 777).last(), Some(&1_008));
     }
 }
