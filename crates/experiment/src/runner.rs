@@ -98,11 +98,24 @@ pub fn run_experiment(
         .filter(|(pos, _)| opts.shard.is_none_or(|s| s.contains(*pos)))
         .map(|(_, k)| k)
         .collect();
-    let pending: Vec<RunKey> = mine
+    let mut pending: Vec<RunKey> = mine
         .iter()
         .filter(|k| !done_keys.contains(k))
         .cloned()
         .collect();
+    // Run-major: run k of every scenario, set and method before run k + 1 (in each
+    // worker's share). The matrix lists a method's runs together, so its cheap methods
+    // came first and a time estimate from the runs done fell short (the paper experiment
+    // said 418 s left at 484 s, then took 1,178 s); an interrupted bench holds about as many
+    // runs of each method. Which runs a shard owns and every run's seed are unchanged.
+    pending.sort_by(|a, b| {
+        (a.run, &a.scenario, &a.param_set, a.method).cmp(&(
+            b.run,
+            &b.scenario,
+            &b.param_set,
+            b.method,
+        ))
+    });
     let skipped = mine.len() - pending.len();
     start(pending.len());
 
@@ -218,5 +231,31 @@ mod tests {
         );
         let records = std::fs::read_to_string(dir.path().join("runs.jsonl")).unwrap_or_default();
         assert!(records.is_empty(), "{records}");
+    }
+
+    #[test]
+    fn runs_go_run_major_so_every_method_has_its_first_runs_early() {
+        let dir = tempfile::tempdir().expect("a temporary folder");
+        let mut spec = ExperimentSpec::paper(1);
+        spec.scenarios = vec!["tiny".into()];
+        spec.methods = ["pso", "gwo", "abc"]
+            .iter()
+            .map(|m| Method::preset(m).expect("a preset"))
+            .collect();
+        spec.runs = 3;
+        spec.budget = swarmplan_core::optim::Budget::evaluations(40);
+        let order = std::sync::Mutex::new(Vec::new());
+        let opts = RunnerOptions {
+            threads: 1,
+            ..RunnerOptions::default()
+        };
+        run_experiment(&spec, dir.path(), opts, &mut |_| {}, &|r| {
+            order.lock().expect("not poisoned").push(r.run);
+        })
+        .expect("the runs");
+        assert_eq!(
+            order.into_inner().expect("not poisoned"),
+            [0, 0, 0, 1, 1, 1, 2, 2, 2]
+        );
     }
 }
