@@ -263,16 +263,9 @@ fn every_figure_renders_on_the_tiny_scenario() {
     );
 }
 
-/// Vertices of the SVG's polylines (plotters writes `points="x,y x,y ..."`).
+/// How many vertices each of the SVG's polylines has.
 fn polyline_vertices(svg: &str) -> Vec<usize> {
-    svg.split("<polyline")
-        .skip(1)
-        .filter_map(|p| {
-            let start = p.find("points=\"")? + 8;
-            let end = start + p[start..].find('"')?;
-            Some(p[start..end].split_whitespace().count())
-        })
-        .collect()
+    polyline_points(svg).iter().map(Vec::len).collect()
 }
 
 #[test]
@@ -332,7 +325,8 @@ fn a_long_trace_is_drawn_with_a_few_vertices_per_pixel_column() {
     assert!(lines.contains(&3_905), "{lines:?}");
 }
 
-/// The polylines' vertices of an SVG, as (x, y) pixel pairs.
+/// The polylines' vertices of an SVG, as (x, y) pixel pairs (plotters writes
+/// `points="x,y x,y ..."` in whole pixels).
 fn polyline_points(svg: &str) -> Vec<Vec<(i64, i64)>> {
     svg.split("<polyline")
         .skip(1)
