@@ -58,6 +58,11 @@ pub struct RunRecord {
     /// evaluations.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub convergence_evaluations: Vec<u64>,
+    /// The iteration of each point of `convergence` when the run passed `TRACE_CAP`
+    /// iterations and its trace was thinned (`swarmplan_core::optim::thinned`); empty when
+    /// point k is iteration k.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub convergence_iterations: Vec<usize>,
     /// Evaluations spent when the best plan first became feasible (none if it never did,
     /// and in records written before it existed): where an anytime run
     /// (`plan --until-feasible`) would have stopped.
@@ -130,6 +135,7 @@ impl RunRecord {
                 .map(|r| finite(r.best_cost / n))
                 .collect(),
             convergence_evaluations: result.outcome.trace.iter().map(|r| r.evaluations).collect(),
+            convergence_iterations: thinned_iterations(&result.outcome.trace),
             first_feasible_evaluations: result
                 .outcome
                 .trace
@@ -137,6 +143,15 @@ impl RunRecord {
                 .find(|r| r.best_violation == 0.0)
                 .map(|r| r.evaluations),
         }
+    }
+}
+
+/// The iteration of each record of a thinned trace; empty when record k is iteration k.
+fn thinned_iterations(trace: &[swarmplan_core::optim::IterationRecord]) -> Vec<usize> {
+    if trace.iter().enumerate().all(|(k, r)| r.iteration == k) {
+        Vec::new()
+    } else {
+        trace.iter().map(|r| r.iteration).collect()
     }
 }
 
@@ -162,5 +177,31 @@ mod finite_or_null {
 
     pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
         Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::INFINITY))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use swarmplan_core::optim::IterationRecord;
+
+    fn at(iterations: &[usize]) -> Vec<IterationRecord> {
+        iterations
+            .iter()
+            .map(|&iteration| IterationRecord {
+                iteration,
+                evaluations: 10 * iteration as u64,
+                best_cost: 1.0,
+                best_violation: 0.0,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_record_names_its_iterations_only_when_the_trace_was_thinned() {
+        assert!(thinned_iterations(&at(&[0, 1, 2, 3])).is_empty());
+        assert!(thinned_iterations(&[]).is_empty());
+        assert_eq!(thinned_iterations(&at(&[0, 4, 8, 9])), [0, 4, 8, 9]);
+        assert_eq!(thinned_iterations(&at(&[0, 1, 3])), [0, 1, 3]);
     }
 }

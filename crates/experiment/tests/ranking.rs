@@ -34,6 +34,7 @@ fn record(scenario: &str, method: &str, run: usize, cost: f64, feasible: bool) -
         seconds: 0.01,
         convergence: vec![cost],
         convergence_evaluations: vec![100],
+        convergence_iterations: Vec::new(),
         first_feasible_evaluations: feasible.then_some(100),
     }
 }

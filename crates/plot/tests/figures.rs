@@ -75,6 +75,7 @@ fn record(alg: Method, run: usize, cost: f64, feasible: bool) -> RunRecord {
                         ))
             })
             .collect(),
+        convergence_iterations: Vec::new(),
         first_feasible_evaluations: None,
     }
 }

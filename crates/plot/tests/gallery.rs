@@ -63,6 +63,7 @@ fn synthetic_records() -> Vec<RunRecord> {
                 seconds: 1.0,
                 convergence,
                 convergence_evaluations: Vec::new(),
+                convergence_iterations: Vec::new(),
                 first_feasible_evaluations: None,
             });
         }
