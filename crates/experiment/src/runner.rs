@@ -108,14 +108,7 @@ pub fn run_experiment(
     // came first and a time estimate from the runs done fell short (the paper experiment
     // said 418 s left at 484 s, then took 1,178 s); an interrupted bench holds about as many
     // runs of each method. Which runs a shard owns and every run's seed are unchanged.
-    pending.sort_by(|a, b| {
-        (a.run, &a.scenario, &a.param_set, a.method).cmp(&(
-            b.run,
-            &b.scenario,
-            &b.param_set,
-            b.method,
-        ))
-    });
+    pending.sort_by(|a, b| a.run.cmp(&b.run).then_with(|| a.cmp(b)));
     let skipped = mine.len() - pending.len();
     start(pending.len());
 

@@ -25,8 +25,8 @@ pub enum PerUav<'a> {
     Columns(&'a [Vec<f64>]),
     /// One row per row of the trace: `[k][i]`. `plan`'s trace ([`swarmplan_core::run::UavTrace`])
     /// shares a row while the best stands, so drawing from it copies nothing: a column per
-    /// UAV would hold 8 bytes per UAV and iteration (100 UAVs run about 360 iterations a
-    /// second, so about 1 GB after an hour).
+    /// UAV would hold 8 bytes per UAV and row (52 MB at 100 UAVs and the 65,537 rows a
+    /// thinned trace holds at most).
     Rows(&'a [Arc<[f64]>]),
 }
 

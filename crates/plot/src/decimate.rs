@@ -2,8 +2,9 @@
 //!
 //! Why: a run under `--time-limit` or a large `--evaluations` takes hundreds of thousands
 //! of iterations (a 5-UAV plan makes about 4,700 a second), and a line of one vertex per
-//! iteration made a convergence SVG of 9 MB after 40 s (about 0.8 GB after an hour at that
-//! rate), drawn as slowly as it is large. M4 (Jugel, Jerzak, Hackenbroich and Markl, "M4: A
+//! iteration made a convergence SVG of 9 MB after 40 s, drawn as slowly as it is large.
+//! Run traces are now bounded (`swarmplan_core::optim::thinned`), but a bounded trace
+//! still holds up to 65,537 rows, dozens per pixel column of the figure. M4 (Jugel, Jerzak, Hackenbroich and Markl, "M4: A
 //! Visualization-Oriented Time Series Data Aggregation", PVLDB 7(10):797-808, 2014,
 //! doi:10.14778/2732951.2732953) keeps, of the consecutive vertices that fall in one
 //! pixel column, the first, the last, the lowest and the highest, in their order: the
