@@ -10,6 +10,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use rayon::prelude::*;
 use swarmplan_core::optim::cancel::Cancel;
+use swarmplan_core::optim::workers;
 use swarmplan_core::optim::Termination;
 use swarmplan_core::run::{run, RunRequest};
 use swarmplan_core::world::World;
@@ -112,11 +113,12 @@ pub fn run_experiment(
     let skipped = mine.len() - pending.len();
     start(pending.len());
 
-    // More workers than runs would only idle (and cost a stack each).
+    // More workers than runs would only idle (and cost a stack and a world each), more
+    // than cores only wait on each other.
     let threads = if opts.threads == 0 {
         0
     } else {
-        opts.threads.min(pending.len().max(1))
+        workers::worker_threads(opts.threads, workers::cores()).min(pending.len().max(1))
     };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)

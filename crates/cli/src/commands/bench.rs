@@ -9,6 +9,7 @@ use anyhow::{Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use swarmplan_core::method::Method;
+use swarmplan_core::optim::workers;
 use swarmplan_experiment::aggregate::aggregate;
 use swarmplan_experiment::matrix::{equal_budget, BudgetPolicy, ExperimentSpec, ParamSet, Shard};
 use swarmplan_experiment::record::RunRecord;
@@ -308,11 +309,14 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
         resume: args.resume,
         cancel: swarmplan_core::optim::cancel::Cancel::NONE,
     };
-    let threads = if args.threads == 0 {
-        std::thread::available_parallelism().map_or(1, usize::from)
-    } else {
-        args.threads
+    let cores = workers::cores();
+    let threads = match workers::worker_threads(args.threads, cores) {
+        0 => cores,
+        t => t,
     };
+    if threads < args.threads {
+        eprintln!("{}", super::threads_note(args.threads, cores));
+    }
     eprintln!(
         "bench: {} scenarios x {} methods x {} parameter sets x {} runs = {} runs, {}, profile {}, master seed {}, {} threads{}, into {}",
         spec.scenarios.len(),

@@ -39,3 +39,11 @@ pub fn warn_unreachable(origin: &str, spec: &ScenarioSpec) {
         eprintln!("warning: {origin}: {u}");
     }
 }
+
+/// Said once when `--threads` asked for more threads than the process has cores
+/// ([`swarmplan_core::optim::workers`]).
+pub fn threads_note(requested: usize, cores: usize) -> String {
+    format!(
+        "note: --threads {requested}: this process may use {cores} cores, so {cores} threads run (more would only wait on each other; the results are the same on any number)"
+    )
+}

@@ -9,7 +9,7 @@ use clap::Args;
 use swarmplan_core::attempts::{run_attempts, MAX_ATTEMPTS};
 use swarmplan_core::encoding::{EncodingKind, InitKind};
 use swarmplan_core::method::Method;
-use swarmplan_core::optim::{Budget, OptimizerParams};
+use swarmplan_core::optim::{workers, Budget, OptimizerParams};
 use swarmplan_core::run::RunRequest;
 use swarmplan_io::artifact::{ArtifactFiles, RunArtifact};
 use swarmplan_io::atomic::{write_atomic, write_atomic_with};
@@ -306,12 +306,14 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     }
     req.budget.until_feasible = args.until_feasible;
     // Every argument is checked before the folder is chosen: a bad one leaves no out-2.
-    let pool = (args.threads > 0)
+    let cores = workers::cores();
+    let threads = workers::worker_threads(args.threads, cores);
+    let pool = (threads > 0)
         .then(|| {
             rayon::ThreadPoolBuilder::new()
-                .num_threads(args.threads)
+                .num_threads(threads)
                 .build()
-                .with_context(|| format!("--threads: cannot start {} threads", args.threads))
+                .with_context(|| format!("--threads: cannot start {threads} threads"))
         })
         .transpose()?;
     let out = super::out_folder::plan_folder(&args.out, args.force)?;
@@ -338,6 +340,9 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
                 String::new()
             }
         );
+    }
+    if threads < args.threads && !args.json {
+        eprintln!("{}", super::threads_note(args.threads, cores));
     }
     // A mutex, not a cell: the run may go to the --threads pool.
     let progress = std::sync::Mutex::new(Progress::new(&req.budget, world.uav_count(), args.json));
