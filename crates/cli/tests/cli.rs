@@ -152,32 +152,28 @@ fn evaluate_refuses_a_plan_made_for_other_terrain_or_another_scenario() {
 
 #[test]
 fn same_seed_gives_the_same_plan_on_any_number_of_threads() {
-    let run = |threads: &str| {
+    // The run (plan, report, evaluations; seconds and file names aside) and stderr of a
+    // short run of `tiny`.
+    let run_with = |threads: &str, json: bool| {
         let dir = tempfile::tempdir().unwrap();
         let out = swarmplan()
-            .args([
-                "plan",
-                "--scenario",
-                "tiny",
-                "--iterations",
-                "15",
-                "--population",
-                "12",
-                "--seed",
-                "3",
-                "--json",
-                "--threads",
-                threads,
-                "--out",
-            ])
+            .args(["plan", "--scenario", "tiny", "--iterations", "15"])
+            .args(["--population", "12", "--seed", "3", "--no-figures"])
+            .args(json.then_some("--json"))
+            .args(["--threads", threads, "--out"])
             .arg(dir.path())
             .assert()
             .success();
-        let mut v = json(&out.get_output().stdout);
-        v.as_object_mut().unwrap().remove("seconds");
-        v.as_object_mut().unwrap().remove("files");
-        v
+        let read = |name: &str| -> serde_json::Value {
+            serde_json::from_str(&std::fs::read_to_string(dir.path().join(name)).unwrap()).unwrap()
+        };
+        let mut run = read("run.json");
+        run.as_object_mut().unwrap().remove("seconds");
+        run.as_object_mut().unwrap().remove("files");
+        let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+        ((read("plan.json"), run), stderr)
     };
+    let run = |threads: &str| run_with(threads, true).0;
     let one = run("1");
     assert_eq!(one, run("1"));
     assert_eq!(one, run("3"));
@@ -185,42 +181,11 @@ fn same_seed_gives_the_same_plan_on_any_number_of_threads() {
     // More threads than cores run as many as there are cores (each idle worker woke for
     // every swarm batch: 256 threads took 8.3 s on 2 cores), said once; the same plan.
     let cores = std::thread::available_parallelism().map_or(1, usize::from);
-    let dir = tempfile::tempdir().unwrap();
-    let out = swarmplan()
-        .args([
-            "plan",
-            "--scenario",
-            "tiny",
-            "--iterations",
-            "15",
-            "--population",
-            "12",
-        ])
-        .args(["--seed", "3", "--json", "--threads", "4096", "--out"])
-        .arg(dir.path())
-        .assert()
-        .success();
-    let err = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    let (plan, err) = run_with("4096", true);
+    assert_eq!(one, plan);
     assert_eq!(err.matches("--threads 4096").count(), 0, "{err}");
-    let mut v = json(&out.get_output().stdout);
-    v.as_object_mut().unwrap().remove("seconds");
-    v.as_object_mut().unwrap().remove("files");
-    assert_eq!(one, v);
-    let out = swarmplan()
-        .args([
-            "plan",
-            "--scenario",
-            "tiny",
-            "--iterations",
-            "15",
-            "--population",
-            "12",
-        ])
-        .args(["--seed", "3", "--threads", "4096", "--no-figures", "--out"])
-        .arg(dir.path().join("text"))
-        .assert()
-        .success();
-    let err = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    let (plan, err) = run_with("4096", false);
+    assert_eq!(one, plan);
     let note =
         format!("--threads 4096: this process may use {cores} cores, so {cores} threads run");
     assert_eq!(err.matches(&note).count(), 1, "{err}");
