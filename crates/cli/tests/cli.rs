@@ -154,9 +154,10 @@ fn evaluate_refuses_a_plan_made_for_other_terrain_or_another_scenario() {
 fn same_seed_gives_the_same_plan_on_any_number_of_threads() {
     // The run (plan, report, evaluations; seconds and file names aside) and stderr of a
     // short run of `tiny`.
-    let run_with = |threads: &str, json: bool| {
+    let run_with = |threads: &str, json: bool, rayon: &str| {
         let dir = tempfile::tempdir().unwrap();
         let out = swarmplan()
+            .env("RAYON_NUM_THREADS", rayon)
             .args(["plan", "--scenario", "tiny", "--iterations", "15"])
             .args(["--population", "12", "--seed", "3", "--no-figures"])
             .args(json.then_some("--json"))
@@ -173,7 +174,7 @@ fn same_seed_gives_the_same_plan_on_any_number_of_threads() {
         let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
         ((read("plan.json"), run), stderr)
     };
-    let run = |threads: &str| run_with(threads, true).0;
+    let run = |threads: &str| run_with(threads, true, "").0;
     let one = run("1");
     assert_eq!(one, run("1"));
     assert_eq!(one, run("3"));
@@ -181,14 +182,28 @@ fn same_seed_gives_the_same_plan_on_any_number_of_threads() {
     // More threads than cores run as many as there are cores (each idle worker woke for
     // every swarm batch: 256 threads took 8.3 s on 2 cores), said once; the same plan.
     let cores = std::thread::available_parallelism().map_or(1, usize::from);
-    let (plan, err) = run_with("4096", true);
+    let (plan, err) = run_with("4096", true, "");
     assert_eq!(one, plan);
     assert_eq!(err.matches("--threads 4096").count(), 0, "{err}");
-    let (plan, err) = run_with("4096", false);
+    let held = format!("this process may use {cores} cores, so {cores} threads run");
+    let (plan, err) = run_with("4096", false, "");
     assert_eq!(one, plan);
-    let note =
-        format!("--threads 4096: this process may use {cores} cores, so {cores} threads run");
-    assert_eq!(err.matches(&note).count(), 1, "{err}");
+    assert_eq!(
+        err.matches(&format!("--threads 4096: {held}")).count(),
+        1,
+        "{err}"
+    );
+    // rayon's own variable, read when --threads is 0, is held the same way.
+    let (plan, err) = run_with("0", false, "4096");
+    assert_eq!(one, plan);
+    assert_eq!(
+        err.matches(&format!("RAYON_NUM_THREADS=4096: {held}"))
+            .count(),
+        1,
+        "{err}"
+    );
+    let (_, err) = run_with("1", false, "4096");
+    assert!(!err.contains("RAYON_NUM_THREADS"), "{err}");
     swarmplan()
         .args(["plan", "--threads", "5000"])
         .assert()

@@ -40,7 +40,8 @@ pub enum RunnerError {
 /// How to run.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct RunnerOptions {
-    /// Worker threads (0: one per core).
+    /// Worker threads (0: one per core, or `RAYON_NUM_THREADS`), held to the cores
+    /// ([`swarmplan_core::optim::workers`]).
     pub threads: usize,
     /// Only this slice of the matrix.
     pub shard: Option<Shard>,
@@ -115,11 +116,9 @@ pub fn run_experiment(
 
     // More workers than runs would only idle (and cost a stack and a world each), more
     // than cores only wait on each other.
-    let threads = if opts.threads == 0 {
-        0
-    } else {
-        workers::worker_threads(opts.threads, workers::cores()).min(pending.len().max(1))
-    };
+    let threads = workers::Asked::of(opts.threads)
+        .threads(workers::cores())
+        .min(pending.len().max(1));
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()

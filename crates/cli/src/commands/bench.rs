@@ -44,7 +44,7 @@ pub struct BenchArgs {
     /// Master seed (default 1); every run's seed derives from it.
     #[arg(long, allow_hyphen_values = true, value_parser = crate::parse_seed)]
     pub seed: Option<u64>,
-    /// Worker threads (default: one per core).
+    /// Worker threads (default 0: one per core, or `RAYON_NUM_THREADS`), at most one per core.
     #[arg(long, default_value_t = 0, value_parser = crate::parse_threads, allow_negative_numbers = true)]
     pub threads: usize,
     /// Output folder.
@@ -310,12 +310,10 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
         cancel: swarmplan_core::optim::cancel::Cancel::NONE,
     };
     let cores = workers::cores();
-    let threads = match workers::worker_threads(args.threads, cores) {
-        0 => cores,
-        t => t,
-    };
-    if threads < args.threads {
-        eprintln!("{}", super::threads_note(args.threads, cores));
+    let asked = workers::Asked::of(args.threads);
+    let threads = asked.threads(cores);
+    if asked.held(cores) {
+        eprintln!("{}", super::threads_note(asked, cores));
     }
     eprintln!(
         "bench: {} scenarios x {} methods x {} parameter sets x {} runs = {} runs, {}, profile {}, master seed {}, {} threads{}, into {}",

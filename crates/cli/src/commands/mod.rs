@@ -11,6 +11,7 @@ pub mod scenario_generate;
 pub mod scenario_new;
 
 use anyhow::Result;
+use swarmplan_core::optim::workers::{Asked, RAYON_ENV};
 use swarmplan_core::world::spec::ScenarioSpec;
 use swarmplan_core::world::unreachable::unreachable_feasibility;
 use swarmplan_core::world::World;
@@ -40,10 +41,15 @@ pub fn warn_unreachable(origin: &str, spec: &ScenarioSpec) {
     }
 }
 
-/// Said once when `--threads` asked for more threads than the process has cores
-/// ([`swarmplan_core::optim::workers`]).
-pub fn threads_note(requested: usize, cores: usize) -> String {
+/// Said once when `--threads` (or `RAYON_NUM_THREADS`) asked for more threads than the
+/// process has cores ([`swarmplan_core::optim::workers`]).
+pub fn threads_note(asked: Asked, cores: usize) -> String {
+    let what = match asked {
+        Asked::Env(n) => format!("{RAYON_ENV}={n}"),
+        Asked::Count(n) => format!("--threads {n}"),
+        Asked::Default => "one thread per core".to_string(),
+    };
     format!(
-        "note: --threads {requested}: this process may use {cores} cores, so {cores} threads run (more would only wait on each other; the results are the same on any number)"
+        "note: {what}: this process may use {cores} cores, so {cores} threads run (more would only wait on each other; the results are the same on any number)"
     )
 }

@@ -75,9 +75,9 @@ pub struct PlanArgs {
     /// them together), and every attempt's seed is printed and stored in run.json.
     #[arg(long, default_value_t = 1, value_parser = parse_attempts, allow_negative_numbers = true)]
     pub attempts: usize,
-    /// Worker threads evaluating a swarm (default 0: one per core, or `RAYON_NUM_THREADS`).
-    /// The plan is the same bits for any number (docs/performance.md, "Parallel
-    /// evaluation").
+    /// Worker threads evaluating a swarm (default 0: one per core, or `RAYON_NUM_THREADS`),
+    /// at most one per core. The plan is the same bits for any number (docs/performance.md,
+    /// "Parallel evaluation").
     #[arg(long, default_value_t = 0, value_parser = crate::parse_threads, allow_negative_numbers = true)]
     pub threads: usize,
 }
@@ -307,15 +307,12 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     req.budget.until_feasible = args.until_feasible;
     // Every argument is checked before the folder is chosen: a bad one leaves no out-2.
     let cores = workers::cores();
-    let threads = workers::worker_threads(args.threads, cores);
-    let pool = (threads > 0)
-        .then(|| {
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .with_context(|| format!("--threads: cannot start {threads} threads"))
-        })
-        .transpose()?;
+    let asked = workers::Asked::of(args.threads);
+    let threads = asked.threads(cores);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .with_context(|| format!("--threads: cannot start {threads} threads"))?;
     let out = super::out_folder::plan_folder(&args.out, args.force)?;
     let out = out.as_path();
     if !args.json {
@@ -341,8 +338,8 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             }
         );
     }
-    if threads < args.threads && !args.json {
-        eprintln!("{}", super::threads_note(args.threads, cores));
+    if asked.held(cores) && !args.json {
+        eprintln!("{}", super::threads_note(asked, cores));
     }
     // A mutex, not a cell: the run may go to the --threads pool.
     let progress = std::sync::Mutex::new(Progress::new(&req.budget, world.uav_count(), args.json));
@@ -353,7 +350,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     };
     let mut current = 1;
     let of = args.attempts;
-    let mut run = || {
+    let run = || {
         run_attempts(
             &world,
             &req,
@@ -382,10 +379,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             },
         )
     };
-    let attempts = match &pool {
-        Some(pool) => pool.install(run),
-        None => run(),
-    };
+    let attempts = pool.install(run);
     progress().finish();
     let chosen = attempts.chosen();
     let (result, uav_trace) = (attempts.result, attempts.uav_trace);
