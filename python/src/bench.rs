@@ -14,7 +14,7 @@ use crate::args;
 use crate::errors::{bad, message, to_py, with_advice};
 use crate::interrupt;
 
-/// Most worker threads (as the CLI).
+/// Largest thread count accepted (as the CLI; held to the cores by the runner).
 const MAX_THREADS: i128 = 4096;
 
 /// Runs scenarios x methods x runs into `out` and returns every record of the folder as a

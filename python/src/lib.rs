@@ -24,6 +24,14 @@ mod scenario;
 
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // `plan` and `Problem.evaluate` run on rayon's global pool: held to the cores as the CLI
+    // holds its own (`RAYON_NUM_THREADS` beyond them only slows a run; the results are the
+    // same on any number). An error means the pool was started already, and is left be.
+    let threads = swarmplan_experiment::workers::Asked::from_count_or_env(0)
+        .threads(swarmplan_experiment::workers::cores());
+    let _ = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build_global();
     m.add(
         "SwarmplanError",
         m.py().get_type::<errors::SwarmplanError>(),

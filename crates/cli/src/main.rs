@@ -87,7 +87,8 @@ pub fn parse_seed(s: &str) -> Result<u64, String> {
         .map_err(|_| format!("expected a whole number in [0, {}], got `{s}`", u64::MAX))
 }
 
-/// Most worker threads `plan` or `bench` starts (each holds a stack; a bench thread a world).
+/// Largest `--threads` accepted (a count above the cores runs one thread per core, with a
+/// note: `swarmplan_experiment::workers`).
 pub const MAX_THREADS: usize = 4096;
 
 /// `--threads` of `plan` and `bench`: 0 (one per core) to [`MAX_THREADS`]. Negative numbers

@@ -462,7 +462,20 @@ fn more_threads_than_runs_is_no_hang_and_absurd_counts_are_refused() {
             .output()
             .unwrap()
     };
-    assert!(bench("1000", "a").status.success());
+    let out = bench("1000", "a");
+    assert!(out.status.success());
+    // Held to the cores, said once (crates/experiment/src/workers.rs).
+    let cores = std::thread::available_parallelism().map_or(1, usize::from);
+    let err = String::from_utf8_lossy(&out.stderr);
+    if cores < 1000 {
+        assert_eq!(
+            err.matches("note: --threads 1000: this process may use")
+                .count(),
+            1,
+            "{err}"
+        );
+        assert!(err.contains(&format!(", {cores} threads, into")), "{err}");
+    }
     let out = bench("100000", "b");
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);

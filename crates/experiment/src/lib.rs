@@ -12,3 +12,4 @@ pub mod stats;
 pub mod store;
 pub mod suite;
 pub mod summary;
+pub mod workers;

@@ -10,7 +10,6 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use rayon::prelude::*;
 use swarmplan_core::optim::cancel::Cancel;
-use swarmplan_core::optim::workers;
 use swarmplan_core::optim::Termination;
 use swarmplan_core::run::{run, RunRequest};
 use swarmplan_core::world::World;
@@ -20,6 +19,7 @@ use thiserror::Error;
 use crate::matrix::{ExperimentSpec, MatrixError, RunKey, Shard};
 use crate::record::RunRecord;
 use crate::store::{check_fingerprints, FolderLock, RecordWriter, StoreError};
+use crate::workers;
 
 #[derive(Debug, Error)]
 pub enum RunnerError {
@@ -41,7 +41,7 @@ pub enum RunnerError {
 #[derive(Debug, Clone, Copy, Default)]
 pub struct RunnerOptions {
     /// Worker threads (0: one per core, or `RAYON_NUM_THREADS`), held to the cores
-    /// ([`swarmplan_core::optim::workers`]).
+    /// ([`crate::workers`]).
     pub threads: usize,
     /// Only this slice of the matrix.
     pub shard: Option<Shard>,
@@ -114,16 +114,16 @@ pub fn run_experiment(
     let skipped = mine.len() - pending.len();
     start(pending.len());
 
-    // More workers than runs would only idle (and cost a stack and a world each), more
-    // than cores only wait on each other.
-    let threads = workers::Asked::of(opts.threads)
+    // More workers than runs would only idle (each costs a stack and holds a run in
+    // flight), more than cores only wait on each other.
+    let threads = workers::Asked::from_count_or_env(opts.threads)
         .threads(workers::cores())
         .min(pending.len().max(1));
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .map_err(|e| RunnerError::Pool {
-            threads: opts.threads,
+            threads,
             message: e.to_string(),
         })?;
     let recorded = AtomicUsize::new(0);

@@ -9,13 +9,13 @@ use anyhow::{Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use swarmplan_core::method::Method;
-use swarmplan_core::optim::workers;
 use swarmplan_experiment::aggregate::aggregate;
 use swarmplan_experiment::matrix::{equal_budget, BudgetPolicy, ExperimentSpec, ParamSet, Shard};
 use swarmplan_experiment::record::RunRecord;
 use swarmplan_experiment::runner::{run_experiment, RunnerOptions};
 use swarmplan_experiment::suite::{suite, suite_names};
 use swarmplan_experiment::summary::{csv, markdown, summarize_records, ExperimentSummary};
+use swarmplan_experiment::workers;
 
 use super::plan::{budget, load_params, SettingsArgs};
 
@@ -303,18 +303,18 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?;
     super::out_folder::bench_folder(&args.out)?;
     // Ctrl-C stops the process itself: the records written stay, `--resume` goes on.
+    let cores = workers::cores();
+    let asked = workers::Asked::from_count_or_env(args.threads);
+    let threads = asked.threads(cores);
+    if let Some(what) = asked.held(cores) {
+        eprintln!("{}", super::threads_note(&what, cores));
+    }
     let opts = RunnerOptions {
-        threads: args.threads,
+        threads,
         shard,
         resume: args.resume,
         cancel: swarmplan_core::optim::cancel::Cancel::NONE,
     };
-    let cores = workers::cores();
-    let asked = workers::Asked::of(args.threads);
-    let threads = asked.threads(cores);
-    if asked.held(cores) {
-        eprintln!("{}", super::threads_note(asked, cores));
-    }
     eprintln!(
         "bench: {} scenarios x {} methods x {} parameter sets x {} runs = {} runs, {}, profile {}, master seed {}, {} threads{}, into {}",
         spec.scenarios.len(),

@@ -11,7 +11,6 @@ pub mod scenario_generate;
 pub mod scenario_new;
 
 use anyhow::Result;
-use swarmplan_core::optim::workers::{Asked, RAYON_ENV};
 use swarmplan_core::world::spec::ScenarioSpec;
 use swarmplan_core::world::unreachable::unreachable_feasibility;
 use swarmplan_core::world::World;
@@ -41,15 +40,14 @@ pub fn warn_unreachable(origin: &str, spec: &ScenarioSpec) {
     }
 }
 
-/// Said once when `--threads` (or `RAYON_NUM_THREADS`) asked for more threads than the
-/// process has cores ([`swarmplan_core::optim::workers`]).
-pub fn threads_note(asked: Asked, cores: usize) -> String {
-    let what = match asked {
-        Asked::Env(n) => format!("{RAYON_ENV}={n}"),
-        Asked::Count(n) => format!("--threads {n}"),
-        Asked::Default => "one thread per core".to_string(),
+/// Said once when `--threads` (or `RAYON_NUM_THREADS`), named by `what`, asked for more
+/// threads than the process has cores ([`swarmplan_experiment::workers`]).
+pub fn threads_note(what: &str, cores: usize) -> String {
+    let (cores, threads) = match cores {
+        1 => ("1 core".to_string(), "1 thread runs".to_string()),
+        n => (format!("{n} cores"), format!("{n} threads run")),
     };
     format!(
-        "note: {what}: this process may use {cores} cores, so {cores} threads run (more would only wait on each other; the results are the same on any number)"
+        "note: {what}: this process may use {cores}, so {threads} (more would only wait on each other; the results are the same on any number)"
     )
 }

@@ -9,8 +9,9 @@ use clap::Args;
 use swarmplan_core::attempts::{run_attempts, MAX_ATTEMPTS};
 use swarmplan_core::encoding::{EncodingKind, InitKind};
 use swarmplan_core::method::Method;
-use swarmplan_core::optim::{workers, Budget, OptimizerParams};
+use swarmplan_core::optim::{Budget, OptimizerParams};
 use swarmplan_core::run::RunRequest;
+use swarmplan_experiment::workers;
 use swarmplan_io::artifact::{ArtifactFiles, RunArtifact};
 use swarmplan_io::atomic::{write_atomic, write_atomic_with};
 use swarmplan_io::plan_file::plan_file;
@@ -307,12 +308,12 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     req.budget.until_feasible = args.until_feasible;
     // Every argument is checked before the folder is chosen: a bad one leaves no out-2.
     let cores = workers::cores();
-    let asked = workers::Asked::of(args.threads);
+    let asked = workers::Asked::from_count_or_env(args.threads);
     let threads = asked.threads(cores);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
-        .with_context(|| format!("--threads: cannot start {threads} threads"))?;
+        .with_context(|| format!("cannot start {threads} worker threads"))?;
     let out = super::out_folder::plan_folder(&args.out, args.force)?;
     let out = out.as_path();
     if !args.json {
@@ -338,10 +339,10 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             }
         );
     }
-    if asked.held(cores) && !args.json {
-        eprintln!("{}", super::threads_note(asked, cores));
+    if let Some(what) = asked.held(cores) {
+        eprintln!("{}", super::threads_note(&what, cores));
     }
-    // A mutex, not a cell: the run may go to the --threads pool.
+    // A mutex, not a cell: the run goes to the worker pool.
     let progress = std::sync::Mutex::new(Progress::new(&req.budget, world.uav_count(), args.json));
     let progress = || {
         progress

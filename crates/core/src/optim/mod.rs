@@ -95,7 +95,6 @@ mod swarm;
 #[cfg(test)]
 mod test_problems;
 pub mod thinned;
-pub mod workers;
 
 pub use abc::{Abc, AbcParams};
 pub use cmaes::{Cmaes, CmaesParams, Covariance};

@@ -1,13 +1,14 @@
-//! How many worker threads a `plan` or a `bench` starts.
+//! How many worker threads a `plan` or a `bench` starts (the CLI's and Python's).
 //!
 //! Why: the work is bound by the processor, so threads beyond the cores the process may use
 //! only wait on each other. For a run they cost far more than that: the evaluator hands each
 //! swarm batch of a few rows to the pool, and every extra idle worker wakes and searches for
 //! work on every batch (`plan --threads 256` took 8.3 s on 2 cores against 0.40 s on 2
 //! threads, the same plan). A run's results do not depend on the thread count (see the
-//! evaluator), so holding a request to the cores changes only how long it takes. A request
-//! comes from `--threads` or, when that is 0, from rayon's own `RAYON_NUM_THREADS`, which
-//! is held the same way.
+//! evaluator in swarmplan-core), so holding a request to the cores changes only how long it
+//! takes. A request comes from `--threads` or, when that is 0, from rayon's own
+//! `RAYON_NUM_THREADS`, which is held the same way. Here, not in swarmplan-core, because it
+//! reads the process's environment and affinity.
 
 use std::num::NonZeroUsize;
 
@@ -32,21 +33,21 @@ pub enum Asked {
 }
 
 impl Asked {
-    /// What `count` (0: none) and this process's `RAYON_NUM_THREADS` ask for.
+    /// What `count` (0: none) asks for, and under 0 this process's `RAYON_NUM_THREADS`.
     #[must_use]
-    pub fn of(count: usize) -> Self {
+    pub fn from_count_or_env(count: usize) -> Self {
         Self::from_parts(count, std::env::var(RAYON_ENV).ok().as_deref())
     }
 
     /// What `count` and the variable's value `env` ask for: the count when it is not 0,
-    /// else the variable when it holds a positive whole number (as rayon reads it), else
-    /// the default.
+    /// else the variable when it holds a positive whole number (read as rayon reads it,
+    /// untrimmed), else the default.
     #[must_use]
     pub fn from_parts(count: usize, env: Option<&str>) -> Self {
         if count > 0 {
             return Self::Count(count);
         }
-        match env.and_then(|v| v.trim().parse::<usize>().ok()) {
+        match env.and_then(|v| v.parse::<usize>().ok()) {
             Some(n) if n > 0 => Self::Env(n),
             _ => Self::Default,
         }
@@ -63,12 +64,14 @@ impl Asked {
         }
     }
 
-    /// Whether the request was more than `cores` and is held to them.
+    /// When the request was more than `cores` and is held to them: what asked for it
+    /// (`--threads N` or `RAYON_NUM_THREADS=N`), for a note.
     #[must_use]
-    pub fn held(self, cores: usize) -> bool {
+    pub fn held(self, cores: usize) -> Option<String> {
         match self {
-            Self::Default => false,
-            Self::Count(n) | Self::Env(n) => n > cores.max(1),
+            Self::Count(n) if n > cores.max(1) => Some(format!("--threads {n}")),
+            Self::Env(n) if n > cores.max(1) => Some(format!("{RAYON_ENV}={n}")),
+            _ => None,
         }
     }
 }
@@ -84,15 +87,21 @@ mod tests {
         assert_eq!(asked(0, Some("")), Asked::Default);
         assert_eq!(asked(0, Some("0")), Asked::Default);
         assert_eq!(asked(0, Some("many")), Asked::Default);
-        assert_eq!(asked(0, Some(" 256 ")), Asked::Env(256));
+        assert_eq!(asked(0, Some(" 256")), Asked::Default);
+        assert_eq!(asked(0, Some("256")), Asked::Env(256));
         assert_eq!(asked(3, Some("256")), Asked::Count(3));
         assert_eq!(Asked::Default.threads(2), 2);
         assert_eq!(Asked::Count(1).threads(2), 1);
         assert_eq!(Asked::Count(256).threads(2), 2);
         assert_eq!(Asked::Env(256).threads(2), 2);
         assert_eq!(Asked::Count(3).threads(0), 1);
-        assert!(Asked::Count(3).held(2) && Asked::Env(3).held(2));
-        assert!(!Asked::Count(2).held(2) && !Asked::Default.held(1));
+        assert_eq!(Asked::Count(3).held(2).as_deref(), Some("--threads 3"));
+        assert_eq!(
+            Asked::Env(3).held(2).as_deref(),
+            Some("RAYON_NUM_THREADS=3")
+        );
+        assert_eq!(Asked::Count(2).held(2), None);
+        assert_eq!(Asked::Default.held(1), None);
         assert!(cores() >= 1);
     }
 }
