@@ -212,13 +212,40 @@ pub(crate) fn circle(cx: f64, cy: f64, r: f64, n: usize) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// `pts` with every point moved into the view `x` by `y` widened by its larger side on
+/// each edge. A threat or an interference disk far larger than the map (a radius of 1e8 m
+/// is a valid scenario) would otherwise reach the drawing backend as a polygon millions of
+/// pixels high, whose fill allocates per pixel row (gigabytes), and as outlines cut into
+/// millions of dashes. The part inside the view keeps its shape as far as the circle's
+/// vertices resolve it; the rest is off the figure.
+pub(crate) fn within_view(pts: Vec<(f64, f64)>, x: (f64, f64), y: (f64, f64)) -> Vec<(f64, f64)> {
+    let span = (x.1 - x.0).max(y.1 - y.0).max(0.0);
+    let (xl, xh, yl, yh) = (x.0 - span, x.1 + span, y.0 - span, y.1 + span);
+    pts.into_iter()
+        .map(|(a, b)| (a.clamp(xl, xh), b.clamp(yl, yh)))
+        .collect()
+}
+
+/// At most this many dashes in one dashed line: longer ones get proportionally longer
+/// dashes and gaps.
+const MAX_DASHES: f64 = 4096.0;
+
 /// Cuts the polyline `pts` into dashes `dash` long with gaps `gap` (same units as the
-/// points), for dashed outlines in data units.
+/// points), for dashed outlines in data units; no dashes for a line of no finite length.
 pub(crate) fn dashes(pts: &[(f64, f64)], dash: f64, gap: f64) -> Vec<Vec<(f64, f64)>> {
     let mut out = Vec::new();
     if pts.len() < 2 || dash <= 0.0 || gap < 0.0 {
         return out;
     }
+    let total: f64 = pts
+        .windows(2)
+        .map(|w| (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1))
+        .sum();
+    if !total.is_finite() {
+        return out;
+    }
+    let stretch = (total / (dash + gap) / MAX_DASHES).max(1.0);
+    let (dash, gap) = (dash * stretch, gap * stretch);
     let period = dash + gap;
     let mut cur: Vec<(f64, f64)> = vec![pts[0]];
     // Position within the current period at the start of each segment.
@@ -284,6 +311,24 @@ mod tests {
         // 20 units: six full periods (12 drawn) and a last dash of 2.
         assert!((drawn - 14.0).abs() < 1e-9, "drawn {drawn}");
         assert_eq!(d.len(), 7);
+    }
+
+    #[test]
+    fn a_huge_circle_is_drawn_within_the_view_in_a_bounded_number_of_dashes() {
+        let ring = within_view(circle(0.0, 0.0, 1e12, 96), (0.0, 1000.0), (0.0, 500.0));
+        assert!(ring
+            .iter()
+            .all(|&(a, b)| (-1000.0..=2000.0).contains(&a) && (-1000.0..=1500.0).contains(&b)));
+        let d = dashes(&ring, 1000.0 / 120.0, 1000.0 / 200.0);
+        assert!(
+            !d.is_empty() && d.len() as f64 <= MAX_DASHES + 1.0,
+            "{}",
+            d.len()
+        );
+        // A line of no finite length gets no dashes rather than an endless loop.
+        assert!(dashes(&[(0.0, 0.0), (f64::INFINITY, 0.0)], 1.0, 1.0).is_empty());
+        let long = dashes(&[(0.0, 0.0), (1e9, 0.0)], 1.0, 1.0);
+        assert!(long.len() as f64 <= MAX_DASHES + 1.0, "{}", long.len());
     }
 
     #[test]

@@ -343,6 +343,7 @@ impl Figure for TopView<'_> {
         let (dash, gap) = (span / 120.0, span / 200.0);
         for win in self.world.channel.interference() {
             let ring = style::circle(win.center[0], win.center[1], win.radius, 120);
+            let ring = style::within_view(ring, self.x, self.y);
             chart.draw_series(
                 style::dashes(&ring, dash * 0.6, gap)
                     .into_iter()
@@ -354,7 +355,9 @@ impl Figure for TopView<'_> {
         let drone = (0..self.world.uav_count()).map(size).fold(0.0, f64::max);
         for th in &self.world.spec.threats {
             let hard = style::circle(th.x, th.y, th.r + drone, 96);
+            let hard = style::within_view(hard, self.x, self.y);
             let band = style::circle(th.x, th.y, th.r + (1.0 + DANGER_SIZES) * drone, 96);
+            let band = style::within_view(band, self.x, self.y);
             chart.draw_series(style::dashes(&band, dash, gap).into_iter().map(|d| {
                 PathElement::new(d, style::THREAT_DARK.mix(0.9).stroke_width(s.px(2.0)))
             }))?;

@@ -324,7 +324,7 @@ impl Figure for View3d<'_> {
             let r = th.r + drone;
             let ground = t.height(th.x, th.y);
             let drawn = ground + th.z;
-            let ring = style::circle(th.x, th.y, r, 48);
+            let ring = style::within_view(style::circle(th.x, th.y, r, 48), self.x, self.y);
             let solid = style::THREAT_DARK.stroke_width(s.px(2.0));
             // The footprint follows the ground; rings at constant altitude above it.
             chart.draw_series(std::iter::once(PathElement::new(

@@ -36,14 +36,34 @@ pub fn plan_figures(
     title: &str,
 ) -> Result<Vec<PathBuf>> {
     let stem = |name: &str| dir.join(name);
-    swarmplan_plot::top_view(world, plan, title, stem("top_view"))?;
-    swarmplan_plot::view_3d(world, plan, title, stem("view_3d"))?;
-    swarmplan_plot::convergence_run(iterations, trace, per_uav, title, stem("convergence"))?;
-    swarmplan_plot::comm_timeline(world, plan, title, stem("comm_timeline"))?;
-    Ok(PLAN_FIGURES
-        .iter()
-        .map(|n| stem(n).with_extension("png"))
-        .collect())
+    let mut drawn = Vec::new();
+    let mut keep = |name: &str, made: Result<_, swarmplan_plot::PlotError>| -> Result<()> {
+        match made {
+            Ok(_) => drawn.push(stem(name).with_extension("png")),
+            // A run whose every cost is infinite has no convergence line: the plan and the
+            // other figures stay, and the missing one is said.
+            Err(e @ swarmplan_plot::PlotError::NoData { .. }) => {
+                eprintln!("note: {e}; that figure is left out");
+            }
+            Err(e) => return Err(e.into()),
+        }
+        Ok(())
+    };
+    let [top, view, convergence, comm] = PLAN_FIGURES;
+    keep(top, swarmplan_plot::top_view(world, plan, title, stem(top)))?;
+    keep(
+        view,
+        swarmplan_plot::view_3d(world, plan, title, stem(view)),
+    )?;
+    keep(
+        convergence,
+        swarmplan_plot::convergence_run(iterations, trace, per_uav, title, stem(convergence)),
+    )?;
+    keep(
+        comm,
+        swarmplan_plot::comm_timeline(world, plan, title, stem(comm)),
+    )?;
+    Ok(drawn)
 }
 
 /// The figures of a bench, one set per scenario.

@@ -161,12 +161,27 @@ fn list(ix: &[usize]) -> String {
 
 fn in_threat(p: DVec2, d: f64, j: usize, t: &Threat, size: f64) -> String {
     format!(
-        "({:.1}, {:.1}) is {d:.1} m from the axis of threats[{j}] at ({}, {}), inside its hard zone of {:.1} m (radius {} + UAV size {size})",
+        "({:.1}, {:.1}) is {} m from the axis of threats[{j}] at ({}, {}), inside its hard zone of {} m (radius {} + UAV size {})",
         p.x,
         p.y,
+        metres(d, 1),
         t.x,
         t.y,
-        t.r + size,
-        t.r
+        metres(t.r + size, 1),
+        metres(t.r, 0),
+        metres(size, 0)
     )
+}
+
+/// A length for a message: with one decimal (`decimals` 1) or as written (0), and in
+/// exponent form from a billion metres on (a radius of 1e300 is a valid number and would
+/// otherwise print as 301 digits).
+fn metres(v: f64, decimals: usize) -> String {
+    if v.abs() >= 1e9 {
+        format!("{v:.3e}")
+    } else if decimals == 0 {
+        v.to_string()
+    } else {
+        format!("{v:.decimals$}")
+    }
 }
