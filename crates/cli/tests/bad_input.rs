@@ -92,6 +92,18 @@ fn scenarios_beyond_what_the_model_can_hold_are_refused_with_the_field() {
             "cell-larger-than-map.toml",
             &["terrain.procedural.cell", "at most half", "got 500"],
         ),
+        (
+            "start-z-1e200.toml",
+            &["uavs[0].start.z", "[-1e5, 1e5] m", "got -1e200"],
+        ),
+        (
+            "heights-overflow.toml",
+            &[
+                "terrain.procedural.min_height",
+                "[-1e5, 1e5] m",
+                "got -1e308",
+            ],
+        ),
     ] {
         let path = reproducer(file);
         let err = fails_with(
@@ -101,6 +113,44 @@ fn scenarios_beyond_what_the_model_can_hold_are_refused_with_the_field() {
         );
         assert!(err.contains(file), "names the file: {err}");
     }
+}
+
+#[test]
+fn a_threat_far_larger_than_the_map_is_drawn_in_bounded_memory() {
+    // Radius 1e308 m: its outline was cut into dashes without end (24 GB before the kernel
+    // stopped it); its run has no finite cost, so no convergence line, which is said.
+    let dir = tempfile::tempdir().unwrap();
+    let started = Instant::now();
+    let out = swarmplan()
+        .args(["plan", "--scenario"])
+        .arg(reproducer("threat-1e308.toml"))
+        .args(["--evaluations", "200", "--out"])
+        .arg(dir.path().join("o"))
+        .timeout(Duration::from_secs(60))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(
+        started.elapsed() < Duration::from_secs(30),
+        "{:?}",
+        started.elapsed()
+    );
+    for figure in ["top_view.png", "view_3d.png", "comm_timeline.png"] {
+        assert!(
+            dir.path().join("o").join(figure).is_file(),
+            "{figure}: {err}"
+        );
+    }
+    assert!(!dir.path().join("o/convergence.png").exists());
+    assert_eq!(
+        err.matches("no finite cost; that figure is left out")
+            .count(),
+        1,
+        "{err}"
+    );
+    // Its size is written as an exponent, not as 309 digits.
+    assert!(err.contains("radius 1.000e308"), "{err}");
 }
 
 #[test]

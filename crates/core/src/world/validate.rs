@@ -90,6 +90,41 @@ pub const MAX_SAMPLES_PER_SEGMENT: f64 = 10_000.0;
 pub const MIN_TIME_STEP_S: f64 = 0.01;
 /// Largest side of the map box, metres (a 1,000 km square).
 pub const MAX_MAP_EXTENT_M: f64 = 1.0e6;
+/// Largest size of a horizontal coordinate (the map box, starts, goal, threats, ground
+/// nodes, interference centres), metres: room for projected coordinates such as UTM
+/// northings (up to 10,000 km), while squares and differences of positions stay finite (a
+/// coordinate of 1e200 made a path length NaN, and its plan was counted feasible).
+pub const MAX_COORDINATE_M: f64 = 1.0e8;
+/// Largest size of a height (starts, goal, threats, the map's altitude band, the procedural
+/// terrain's heights), metres: 100 km, the edge of space.
+pub const MAX_HEIGHT_M: f64 = 1.0e5;
+
+/// `v` finite and at most `limit` in size (a coordinate or a height).
+fn bounded(field: &str, v: f64, limit: f64) -> Result<(), SpecError> {
+    if v.is_finite() && v.abs() <= limit {
+        Ok(())
+    } else {
+        // A value far out is written as an exponent, not hundreds of digits.
+        let got = if v.abs() >= 1e9 {
+            format!("{v:e}")
+        } else {
+            v.to_string()
+        };
+        Err(err(
+            field,
+            format!("a number in [-{limit:e}, {limit:e}] m"),
+            got,
+        ))
+    }
+}
+
+fn coordinate(field: &str, v: f64) -> Result<(), SpecError> {
+    bounded(field, v, MAX_COORDINATE_M)
+}
+
+fn height(field: &str, v: f64) -> Result<(), SpecError> {
+    bounded(field, v, MAX_HEIGHT_M)
+}
 
 fn range(field: &str, r: [f64; 2]) -> Result<(), SpecError> {
     if r[0].is_finite() && r[1].is_finite() && r[0] < r[1] {
@@ -136,6 +171,17 @@ impl ScenarioSpec {
                 ));
             }
         }
+        for (field, r, check) in [
+            (
+                "map.x",
+                m.x,
+                coordinate as fn(&str, f64) -> Result<(), SpecError>,
+            ),
+            ("map.y", m.y, coordinate),
+            ("map.z_agl", m.z_agl, height),
+        ] {
+            r.iter().try_for_each(|&v| check(field, v))?;
+        }
         non_negative("map.clearance", m.clearance)?;
         positive("map.clearance_step", m.clearance_step)?;
         let diagonal = (m.x[1] - m.x[0]).hypot(m.y[1] - m.y[0]);
@@ -157,6 +203,8 @@ impl ScenarioSpec {
             .validate()
             .map_err(procedural_field)?;
         let pr = &self.terrain.procedural;
+        height("terrain.procedural.min_height", pr.min_height)?;
+        height("terrain.procedural.max_height", pr.max_height)?;
         if self.terrain.source == "procedural" && pr.cell > 0.5 * pr.width.min(pr.height) {
             return Err(err(
                 "terrain.procedural.cell",
@@ -168,24 +216,26 @@ impl ScenarioSpec {
             ));
         }
         for (k, t) in self.threats.iter().enumerate() {
-            finite(&format!("threats[{k}].x"), t.x)?;
-            finite(&format!("threats[{k}].y"), t.y)?;
-            finite(&format!("threats[{k}].z"), t.z)?;
+            coordinate(&format!("threats[{k}].x"), t.x)?;
+            coordinate(&format!("threats[{k}].y"), t.y)?;
+            height(&format!("threats[{k}].z"), t.z)?;
             positive(&format!("threats[{k}].r"), t.r)?;
         }
         let g = &self.goal;
-        for (c, v) in ["x", "y", "z"].iter().zip(g.position) {
-            finite(&format!("goal.position.{c}"), v)?;
+        for (c, v) in ["x", "y"].iter().zip(g.position) {
+            coordinate(&format!("goal.position.{c}"), v)?;
         }
+        height("goal.position.z", g.position[2])?;
         non_negative("goal.antenna", g.antenna)?;
         if self.uavs.is_empty() {
             return Err(err("uavs", "at least one UAV", 0));
         }
         for (k, u) in self.uavs.iter().enumerate() {
             let f = |s: &str| format!("uavs[{k}].{s}");
-            for (c, v) in ["x", "y", "z"].iter().zip(u.start) {
-                finite(&f(&format!("start.{c}")), v)?;
+            for (c, v) in ["x", "y"].iter().zip(u.start) {
+                coordinate(&f(&format!("start.{c}")), v)?;
             }
+            height(&f("start.z"), u.start[2])?;
             if !(u.max_turn_deg > 0.0 && u.max_turn_deg <= 180.0) {
                 return Err(err(
                     f("max_turn_deg"),
@@ -231,11 +281,11 @@ impl ScenarioSpec {
         fine_enough("communication.line_of_sight_step", c.line_of_sight_step)?;
         non_negative("communication.outage_base_cost", c.outage_base_cost)?;
         for (k, n) in c.ground_nodes.iter().enumerate() {
-            finite(
+            coordinate(
                 &format!("communication.ground_nodes[{k}].position.x"),
                 n.position[0],
             )?;
-            finite(
+            coordinate(
                 &format!("communication.ground_nodes[{k}].position.y"),
                 n.position[1],
             )?;
@@ -247,8 +297,8 @@ impl ScenarioSpec {
         for (k, w) in c.interference.iter().enumerate() {
             let f = |s: &str| format!("communication.interference[{k}].{s}");
             range(&f("time"), w.time)?;
-            finite(&f("center.x"), w.center[0])?;
-            finite(&f("center.y"), w.center[1])?;
+            coordinate(&f("center.x"), w.center[0])?;
+            coordinate(&f("center.y"), w.center[1])?;
             positive(&f("radius"), w.radius)?;
             non_negative(&f("loss_db"), w.loss_db)?;
         }
