@@ -97,6 +97,15 @@ fn scenarios_beyond_what_the_model_can_hold_are_refused_with_the_field() {
             &["uavs[0].start.z", "[-1e5, 1e5] m", "got -1e200"],
         ),
         (
+            "relays-fine-step.toml",
+            &[
+                "communication.ground_nodes",
+                "at most 5 relays",
+                "148 MB",
+                "got 6",
+            ],
+        ),
+        (
             "heights-overflow.toml",
             &[
                 "terrain.procedural.min_height",

@@ -15,8 +15,9 @@
 
 use thiserror::Error;
 
+use super::horizon::HORIZON_BINS;
 use super::procedural::{ProceduralError, MAX_HILLS, MAX_NODES};
-use super::spec::{ObjectivePreset, ScenarioSpec};
+use super::spec::{CommRequirement, ObjectivePreset, ScenarioSpec};
 
 /// A field with a bad value.
 #[derive(Debug, Error, Clone, PartialEq)]
@@ -90,6 +91,11 @@ pub const MAX_SAMPLES_PER_SEGMENT: f64 = 10_000.0;
 pub const MIN_TIME_STEP_S: f64 = 0.01;
 /// Largest side of the map box, metres (a 1,000 km square).
 pub const MAX_MAP_EXTENT_M: f64 = 1.0e6;
+/// Most horizon-table entries of all ground nodes together (4 bytes each: 1 GiB). Each node
+/// holds [`HORIZON_BINS`] bearings x (map diagonal / line-of-sight step) entries: 164 MB at
+/// the finest step this limit's table allows, so ten relays took 1.5 GB and a thousand at
+/// the default step 2 GB, without a word.
+pub const MAX_HORIZON_ENTRIES: f64 = 268_435_456.0;
 /// Largest size of a horizontal coordinate (the map box, starts, goal, threats, ground
 /// nodes, interference centres), metres: room for projected coordinates such as UTM
 /// northings (up to 10,000 km), while squares and differences of positions stay finite (a
@@ -293,6 +299,26 @@ impl ScenarioSpec {
                 &format!("communication.ground_nodes[{k}].antenna"),
                 n.antenna,
             )?;
+        }
+        if c.line_of_sight && c.requirement != CommRequirement::None {
+            let fixed = usize::from(c.ground_station) + 1; // the station and UGV0
+            let nodes = fixed + c.ground_nodes.len();
+            #[allow(clippy::cast_precision_loss)] // 4096 bins, a checked number of steps
+            let per_node = HORIZON_BINS as f64 * (diagonal / c.line_of_sight_step).ceil().max(1.0);
+            #[allow(clippy::cast_precision_loss)]
+            if nodes as f64 * per_node > MAX_HORIZON_ENTRIES {
+                let most = (MAX_HORIZON_ENTRIES / per_node).floor() - fixed as f64;
+                return Err(err(
+                    "communication.ground_nodes",
+                    format!(
+                        "at most {most:.0} relays at communication.line_of_sight_step {} m on this map (each ground node holds a horizon table of {:.0} MB; {nodes} nodes would take {:.1} GB); fewer relays or a coarser line_of_sight_step",
+                        c.line_of_sight_step,
+                        per_node * 4.0 / 1e6,
+                        nodes as f64 * per_node * 4.0 / 1e9
+                    ),
+                    c.ground_nodes.len(),
+                ));
+            }
         }
         for (k, w) in c.interference.iter().enumerate() {
             let f = |s: &str| format!("communication.interference[{k}].{s}");
