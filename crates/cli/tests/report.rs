@@ -55,6 +55,41 @@ fn report_is_self_contained_and_names_what_it_shows() {
 }
 
 #[test]
+fn report_out_never_replaces_a_file_that_is_not_a_report() {
+    let dir = tempfile::tempdir().unwrap();
+    plan_folder(dir.path(), &[]);
+    let plan = std::fs::read(dir.path().join("plan.json")).unwrap();
+    swarmplan()
+        .arg("report")
+        .arg(dir.path())
+        .arg("--out")
+        .arg(dir.path().join("plan.json"))
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains(
+            "plan.json: expected a file ending in .html",
+        ));
+    assert_eq!(plan, std::fs::read(dir.path().join("plan.json")).unwrap());
+    let other = dir.path().join("notes.html");
+    std::fs::write(&other, "my notes").unwrap();
+    swarmplan()
+        .arg("report")
+        .arg(dir.path())
+        .arg("--out")
+        .arg(&other)
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains(
+            "holds something other than an HTML page",
+        ));
+    assert_eq!(std::fs::read_to_string(&other).unwrap(), "my notes");
+    // A report is replaced by the next one.
+    for _ in 0..2 {
+        swarmplan().arg("report").arg(dir.path()).assert().success();
+    }
+}
+
+#[test]
 fn report_without_inputs_is_a_clear_error() {
     let dir = tempfile::tempdir().unwrap();
     swarmplan()

@@ -1,6 +1,6 @@
 //! `swarmplan report DIR`: a self-contained HTML report of a `plan` or `bench` folder.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use clap::Args;
@@ -23,6 +23,7 @@ pub struct ReportArgs {
 pub fn run(args: &ReportArgs) -> Result<()> {
     let dir = &args.dir;
     let out = args.out.clone().unwrap_or_else(|| dir.join("report.html"));
+    check_out(&out)?;
     let html = if dir.join("plan.json").exists() {
         let scenario = dir.join("scenario.toml");
         let loaded = if scenario.exists() {
@@ -65,5 +66,34 @@ pub fn run(args: &ReportArgs) -> Result<()> {
     swarmplan_io::atomic::write_atomic(&out, html.as_bytes())
         .with_context(|| format!("{}: cannot write", out.display()))?;
     println!("wrote {}", out.display());
+    Ok(())
+}
+
+/// The report goes to an `.html` file that is not already something else: `--out
+/// DIR/plan.json` or `DIR/runs.jsonl` replaced the plan or every run record with HTML.
+fn check_out(out: &Path) -> Result<()> {
+    let html = out
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("html") || e.eq_ignore_ascii_case("htm"));
+    anyhow::ensure!(
+        html,
+        "--out {}: expected a file ending in .html (the report is one HTML page)",
+        out.display()
+    );
+    if out.is_file() {
+        let mut head = [0u8; 256];
+        let n = std::fs::File::open(out)
+            .and_then(|mut f| std::io::Read::read(&mut f, &mut head))
+            .with_context(|| format!("--out {}: cannot read what is there", out.display()))?;
+        let start = String::from_utf8_lossy(&head[..n])
+            .trim_start()
+            .to_ascii_lowercase();
+        anyhow::ensure!(
+            start.starts_with("<!doctype html") || start.starts_with("<html"),
+            "--out {}: holds something other than an HTML page; not replaced",
+            out.display()
+        );
+    }
     Ok(())
 }
