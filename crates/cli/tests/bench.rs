@@ -794,3 +794,52 @@ fn a_folder_resumed_by_another_build_says_so() {
     assert_eq!(builds[0], "0123456789ab");
     assert_eq!(builds.len(), 2, "{builds:?}");
 }
+
+#[test]
+fn scenarios_whose_file_names_meet_in_one_figure_name_keep_their_own_figures() {
+    // `x/t.toml` and `x_t.toml` both make the stem `x_t_toml`: the second scenario's box
+    // plots used to replace the first's.
+    let dir = tempfile::tempdir().unwrap();
+    let tiny = Command::cargo_bin("swarmplan")
+        .unwrap()
+        .args(["scenario", "show", "tiny"])
+        .output()
+        .unwrap()
+        .stdout;
+    std::fs::create_dir(dir.path().join("x")).unwrap();
+    std::fs::write(dir.path().join("x/t.toml"), &tiny).unwrap();
+    std::fs::write(dir.path().join("x_t.toml"), &tiny).unwrap();
+    Command::cargo_bin("swarmplan")
+        .unwrap()
+        .current_dir(dir.path())
+        .args([
+            "bench",
+            "--scenarios",
+            "x/t.toml,x_t.toml",
+            "--methods",
+            "pso",
+        ])
+        .args([
+            "--runs",
+            "1",
+            "--iterations",
+            "3",
+            "--population",
+            "6",
+            "--out",
+            "b",
+        ])
+        .assert()
+        .success();
+    for stem in [
+        "bench_x_t_toml",
+        "bench_x_t_toml_2",
+        "convergence_x_t_toml",
+        "convergence_x_t_toml_2",
+    ] {
+        assert!(
+            dir.path().join("b").join(format!("{stem}.svg")).is_file(),
+            "{stem}"
+        );
+    }
+}

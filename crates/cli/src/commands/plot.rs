@@ -73,8 +73,11 @@ pub fn bench_figures(dir: &Path, records: &[RunRecord]) -> Result<Vec<PathBuf>> 
     scenarios.dedup();
     let scenario_count = scenarios.len();
     let mut out = Vec::new();
+    // File-name stems given so far: `sc/u9.toml` and `sc_u9.toml` both make `sc_u9_toml`,
+    // and one scenario's figures used to replace the other's.
+    let mut taken = std::collections::HashSet::new();
     for sc in scenarios {
-        let safe: String = sc
+        let base: String = sc
             .chars()
             .map(|c| {
                 if c.is_ascii_alphanumeric() || c == '-' {
@@ -84,6 +87,16 @@ pub fn bench_figures(dir: &Path, records: &[RunRecord]) -> Result<Vec<PathBuf>> 
                 }
             })
             .collect();
+        let safe = (1..)
+            .map(|k| {
+                if k == 1 {
+                    base.clone()
+                } else {
+                    format!("{base}_{k}")
+                }
+            })
+            .find(|s| taken.insert(s.clone()))
+            .unwrap_or(base);
         let boxes = dir.join(format!("bench_{safe}"));
         swarmplan_plot::bench_boxplots(records, sc, &boxes)?;
         let conv = dir.join(format!("convergence_{safe}"));
