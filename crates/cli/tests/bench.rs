@@ -842,4 +842,22 @@ fn scenarios_whose_file_names_meet_in_one_figure_name_keep_their_own_figures() {
             "{stem}"
         );
     }
+    // Two spellings of one file are one scenario listed twice.
+    Command::cargo_bin("swarmplan")
+        .unwrap()
+        .current_dir(dir.path())
+        .args([
+            "bench",
+            "--scenarios",
+            "x/t.toml,./x//t.toml",
+            "--methods",
+            "pso",
+        ])
+        .args(["--runs", "1", "--iterations", "3", "--out", "c"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains(
+            "scenarios: `./x//t.toml` is the same file as `x/t.toml`",
+        ));
+    assert!(!dir.path().join("c").exists());
 }

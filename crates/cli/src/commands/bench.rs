@@ -254,6 +254,26 @@ fn relative_to(mut spec: ExperimentSpec, dir: &Path) -> ExperimentSpec {
     spec
 }
 
+/// Refuses two spellings of one scenario file (`sc/a.toml`, `./sc/a.toml`, a link to it):
+/// the matrix refuses a name listed twice, but these are different names for the same
+/// runs, each with its own seeds.
+fn same_file_twice(scenarios: &[String]) -> Result<()> {
+    let mut seen = std::collections::HashMap::new();
+    for s in scenarios {
+        if swarmplan_io::scenario::is_scenario_name(s) {
+            continue;
+        }
+        if let Ok(file) = std::fs::canonicalize(s) {
+            if let Some(first) = seen.insert(file, s) {
+                anyhow::bail!(
+                    "scenarios: `{s}` is the same file as `{first}`; list each scenario once"
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
 /// The budget of an experiment in words, e.g. `equal budgets: 38700 evaluations per run`.
 fn describe_budget(spec: &ExperimentSpec) -> String {
     match spec.budget_policy {
@@ -294,6 +314,7 @@ impl LogLines {
 
 pub fn run_bench(args: &BenchArgs) -> Result<()> {
     let spec = experiment(args)?;
+    same_file_twice(&spec.scenarios)?;
     // Scenarios no plan can satisfy are said once, before the runs start; a scenario that
     // does not load, or a bad --shard, is said before the folder is made.
     for name in &spec.scenarios {
