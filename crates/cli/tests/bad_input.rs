@@ -224,6 +224,13 @@ fn plans_that_cannot_be_evaluated_name_the_uav_and_waypoint() {
         ),
         ("plan-trailing.json", &["text after the plan object"]),
         (
+            "plan-misspelt-delay.json",
+            &[
+                "uavs[0].Delay: unknown field `Delay`",
+                "expected one of `waypoints`, `delay`",
+            ],
+        ),
+        (
             "plan-array.json",
             &["expected a JSON object", "found an array"],
         ),

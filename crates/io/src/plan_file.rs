@@ -63,8 +63,10 @@ fn points<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<[f64; 3]>, D::Er
         .collect()
 }
 
-/// One UAV in a plan file.
+/// One UAV in a plan file. Unknown keys are refused, as in scenario files: a misspelt
+/// `delay` used to be dropped and the UAV planned as leaving at once, without a word.
 #[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct UavEntry {
     /// [x, y, z above ground] of each waypoint, start and goal included.
     #[serde(deserialize_with = "points")]
@@ -93,8 +95,9 @@ fn is_zero(x: &f64) -> bool {
     *x == 0.0
 }
 
-/// A plan file.
+/// A plan file (unknown keys refused: a misspelt `pace` used to be read as pace 1).
 #[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct PlanFile {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scenario: Option<String>,
