@@ -453,6 +453,42 @@ fn geographic_dem_frame_agrees_with_the_reader() {
 }
 
 #[test]
+fn a_geographic_dem_across_the_antimeridian_gives_longitudes_in_range_and_none_past_a_pole() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("dateline.tif");
+    // 200 x 200 cells of 0.0001 deg from longitude 179.99: the last 0.01 deg are east of 180.
+    let keys = [(1024, 2), (1025, 1), (2048, 4326)];
+    write_geotiff(&path, 200, 200, (1e-4, 1e-4), (179.99, 10.0), &keys);
+    let dem = read_terrain(&path, &DemOptions::default()).unwrap();
+    let f = LocalFrame::from_dem(&dem).unwrap();
+    let (_, _, x1, y1) = dem.terrain.extent();
+    let east = f.to_geodetic(DVec3::new(x1, y1, 0.0)).unwrap();
+    assert!((-180.0..-179.97).contains(&east.lon_deg), "{east:?}");
+    // A point east of 180 lies inside the raster, not 40,000 km west of it.
+    let back = f
+        .from_geodetic(Geodetic::new(9.995, -179.995, 0.0))
+        .unwrap();
+    assert!(
+        (0.0..=x1).contains(&back.x) && (0.0..=y1).contains(&back.y),
+        "{back:?}"
+    );
+    let again = f.to_geodetic(back).unwrap();
+    assert!((again.lon_deg + 179.995).abs() < 1e-9, "{again:?}");
+    // West of the antimeridian, as before.
+    let west = f.from_geodetic(Geodetic::new(9.995, 179.995, 0.0)).unwrap();
+    assert!(west.x > 0.0 && west.x < back.x, "{west:?} {back:?}");
+
+    let path = dir.path().join("past-pole.tif");
+    write_geotiff(&path, 50, 40, (1e-3, 1e-3), (10.0, 95.0), &keys);
+    let dem = read_terrain(&path, &DemOptions::default()).unwrap();
+    let e = LocalFrame::from_dem(&dem).unwrap_err().to_string();
+    assert!(
+        e.contains("beyond the poles") && e.contains("past-pole.tif"),
+        "{e}"
+    );
+}
+
+#[test]
 fn spso_reference_dem_is_georeferenced_when_present() {
     let Some(path) =
         swarmplan_io::reference_data::reference_file("spso/ChrismasTerrain.tif").unwrap()

@@ -94,6 +94,17 @@ pub enum FrameKind {
     },
 }
 
+/// `lon` (degrees) brought into [-180, 180): a geographic raster that crosses the
+/// antimeridian runs on past 180 in its own grid, but a longitude written for an autopilot
+/// or GIS does not.
+fn wrap_longitude(lon: f64) -> f64 {
+    if (-180.0..180.0).contains(&lon) {
+        lon
+    } else {
+        (lon + 180.0).rem_euclid(360.0) - 180.0
+    }
+}
+
 /// Plan coordinates <-> WGS 84. Altitude AMSL = local height + `altitude_offset`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LocalFrame {
@@ -170,6 +181,18 @@ impl LocalFrame {
                          4283, 7844, 4258, 4269)"
                     ))
                 })?;
+                // A tie point or cell size that puts the raster past a pole is no place on
+                // Earth (latitude 95 was read as one, and exported as 94.999).
+                let (_, _, _, north) = dem.terrain.extent();
+                let lat_north = g.south_west_node.1 + north * g.cell.1 / dem.cell_metres.1;
+                for lat in [g.south_west_node.1, lat_north] {
+                    if !(lat.is_finite() && (-90.0..=90.0).contains(&lat)) {
+                        return Err(fail(format!(
+                            "{}: the raster reaches latitude {lat}, beyond the poles",
+                            crs.name()
+                        )));
+                    }
+                }
                 FrameKind::Geographic {
                     crs,
                     south_west: g.south_west_node,
@@ -214,7 +237,7 @@ impl LocalFrame {
                 ..
             } => (
                 south_west.1 + p.y / metres_per_degree.1,
-                south_west.0 + p.x / metres_per_degree.0,
+                wrap_longitude(south_west.0 + p.x / metres_per_degree.0),
             ),
         };
         Ok(Geodetic::new(lat, lon, p.z + self.altitude_offset))
@@ -234,7 +257,9 @@ impl LocalFrame {
                 metres_per_degree,
                 ..
             } => (
-                (g.lon_deg - south_west.0) * metres_per_degree.0,
+                // East of the south-west node by at most half a turn: a raster across the
+                // antimeridian holds longitudes on both sides of it.
+                wrap_longitude(g.lon_deg - south_west.0) * metres_per_degree.0,
                 (g.lat_deg - south_west.1) * metres_per_degree.1,
             ),
         };
