@@ -74,6 +74,40 @@ pub mod vec {
     }
 }
 
+/// The same for every value of a map keyed by name: `#[serde(with = "json_f64::map")]`.
+pub mod map {
+    use std::collections::BTreeMap;
+
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    #[derive(Serialize, Deserialize)]
+    struct Item(#[serde(with = "super")] f64);
+
+    /// Writes each value as [`super::serialize`] does.
+    ///
+    /// # Errors
+    /// Whatever the serializer returns.
+    pub fn serialize<S: Serializer>(
+        values: &BTreeMap<String, f64>,
+        serializer: S,
+    ) -> Result<S::Ok, S::Error> {
+        serializer.collect_map(values.iter().map(|(k, v)| (k, Item(*v))))
+    }
+
+    /// Reads numbers or `"inf"`, `"-inf"`, `"nan"` as the values.
+    ///
+    /// # Errors
+    /// A value that is neither.
+    pub fn deserialize<'de, D: Deserializer<'de>>(
+        deserializer: D,
+    ) -> Result<BTreeMap<String, f64>, D::Error> {
+        Ok(BTreeMap::<String, Item>::deserialize(deserializer)?
+            .into_iter()
+            .map(|(k, i)| (k, i.0))
+            .collect())
+    }
+}
+
 struct F64Visitor;
 
 impl Visitor<'_> for F64Visitor {
@@ -122,6 +156,20 @@ mod tests {
         let json = serde_json::to_string(&Wrapped { v }).unwrap();
         let back: Wrapped = serde_json::from_str(&json).unwrap();
         (json, back.v)
+    }
+
+    #[test]
+    fn maps_keep_their_non_finite_values_as_strings() {
+        #[derive(Debug, Serialize, Deserialize)]
+        struct Terms {
+            #[serde(with = "super::map")]
+            terms: std::collections::BTreeMap<String, f64>,
+        }
+        let terms = [("a".to_string(), 2.0), ("b".to_string(), f64::INFINITY)].into();
+        let json = serde_json::to_string(&Terms { terms }).unwrap();
+        assert_eq!(json, r#"{"terms":{"a":2.0,"b":"inf"}}"#);
+        let back: Terms = serde_json::from_str(&json).unwrap();
+        assert_eq!(back.terms["b"], f64::INFINITY);
     }
 
     #[test]

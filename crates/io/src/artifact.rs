@@ -70,6 +70,9 @@ pub struct CostSummary {
     pub total: f64,
     #[serde(with = "json_f64")]
     pub per_uav: f64,
+    /// Weighted term totals; a non-finite one (SPSO's infinite collision cost) is written as
+    /// `"inf"` like the total, not as the largest finite number.
+    #[serde(with = "json_f64::map")]
     pub terms: BTreeMap<String, f64>,
 }
 
@@ -90,13 +93,12 @@ pub struct AssessmentReport {
 impl AssessmentReport {
     #[must_use]
     pub fn of(a: &Assessment) -> Self {
-        let finite = |v: f64| if v.is_finite() { v } else { f64::MAX };
         let mut terms: BTreeMap<String, f64> = a
             .term_totals()
             .iter()
-            .map(|(t, v)| (t.name().to_string(), finite(v)))
+            .map(|(t, v)| (t.name().to_string(), v))
             .collect();
-        terms.insert("penalty".into(), finite(a.penalty));
+        terms.insert("penalty".into(), a.penalty);
         Self {
             feasible: a.feasible(),
             profile: a.profile,
