@@ -17,7 +17,7 @@ use std::sync::Mutex;
 
 use thiserror::Error;
 
-use crate::matrix::{ExperimentSpec, RunKey};
+use crate::matrix::{BudgetPolicy, ExperimentSpec, RunKey};
 use crate::record::RunRecord;
 
 pub const SPEC_FILE: &str = "experiment.json";
@@ -472,7 +472,11 @@ pub fn difference(old: &ExperimentSpec, new: &ExperimentSpec, [a, b]: [&str; 2])
         };
         format!("methods {} {a}, {} {b}", labels(old), labels(new))
     } else if old.budget != new.budget || old.budget_policy != new.budget_policy {
-        "another budget".into()
+        format!(
+            "budget {} {a}, {} {b}",
+            budget_words(old),
+            budget_words(new)
+        )
     } else if old.profile != new.profile {
         format!(
             "feasibility profile {} {a}, {} {b}",
@@ -487,6 +491,33 @@ pub fn difference(old: &ExperimentSpec, new: &ExperimentSpec, [a, b]: [&str; 2])
         format!("terrain {} {a}, {} {b}", terrain(old), terrain(new))
     } else {
         "other parameter sets (--params, --population)".into()
+    }
+}
+
+/// A spec's budget for a message: `equal: 38700 evaluations`, `paper: 200 iterations`.
+fn budget_words(s: &ExperimentSpec) -> String {
+    let b = &s.budget;
+    let mut parts = Vec::new();
+    if let Some(i) = b.iterations {
+        parts.push(format!("{i} iterations"));
+    }
+    if let Some(e) = b.evaluations {
+        parts.push(format!("{e} evaluations"));
+    }
+    if let Some(t) = b.time_limit_ms {
+        parts.push(format!("{t} ms"));
+    }
+    if b.until_feasible {
+        parts.push("until feasible".into());
+    }
+    let policy = match s.budget_policy {
+        BudgetPolicy::Equal => "equal",
+        BudgetPolicy::Paper => "paper",
+    };
+    if parts.is_empty() {
+        policy.to_string()
+    } else {
+        format!("{policy}: {}", parts.join(", "))
     }
 }
 
@@ -517,6 +548,15 @@ mod tests {
         assert_eq!(
             diff(&old, &new),
             "terrain each scenario's own there, dem.tif now"
+        );
+        let mut new = old.clone();
+        new.budget.evaluations = Some(5000);
+        new.budget.iterations = None;
+        let said = diff(&old, &new);
+        assert!(
+            said.starts_with("budget equal: ")
+                && said.ends_with("there, equal: 5000 evaluations now"),
+            "{said}"
         );
     }
 
