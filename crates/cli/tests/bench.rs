@@ -809,28 +809,17 @@ fn scenarios_whose_file_names_meet_in_one_figure_name_keep_their_own_figures() {
     std::fs::create_dir(dir.path().join("x")).unwrap();
     std::fs::write(dir.path().join("x/t.toml"), &tiny).unwrap();
     std::fs::write(dir.path().join("x_t.toml"), &tiny).unwrap();
-    Command::cargo_bin("swarmplan")
-        .unwrap()
-        .current_dir(dir.path())
-        .args([
-            "bench",
-            "--scenarios",
-            "x/t.toml,x_t.toml",
-            "--methods",
-            "pso",
-        ])
-        .args([
-            "--runs",
-            "1",
-            "--iterations",
-            "3",
-            "--population",
-            "6",
-            "--out",
-            "b",
-        ])
-        .assert()
-        .success();
+    // One PSO run of 3 iterations per scenario of `scenarios`, into `out`.
+    let pso = |scenarios: &str, out: &str| {
+        Command::cargo_bin("swarmplan")
+            .unwrap()
+            .current_dir(dir.path())
+            .args(["bench", "--scenarios", scenarios, "--methods", "pso"])
+            .args(["--runs", "1", "--iterations", "3", "--population", "6"])
+            .args(["--out", out])
+            .assert()
+    };
+    pso("x/t.toml,x_t.toml", "b").success();
     for stem in [
         "bench_x_t_toml",
         "bench_x_t_toml_2",
@@ -843,18 +832,7 @@ fn scenarios_whose_file_names_meet_in_one_figure_name_keep_their_own_figures() {
         );
     }
     // Two spellings of one file are one scenario listed twice.
-    Command::cargo_bin("swarmplan")
-        .unwrap()
-        .current_dir(dir.path())
-        .args([
-            "bench",
-            "--scenarios",
-            "x/t.toml,./x//t.toml",
-            "--methods",
-            "pso",
-        ])
-        .args(["--runs", "1", "--iterations", "3", "--out", "c"])
-        .assert()
+    pso("x/t.toml,./x//t.toml", "c")
         .code(2)
         .stderr(predicate::str::contains(
             "scenarios: `./x//t.toml` is the same file as `x/t.toml`",
