@@ -529,6 +529,30 @@ fn new_request<'a>(path: &'a Path, start: Geodetic, goal: Geodetic) -> NewScenar
 }
 
 #[test]
+fn scenario_new_names_a_dem_whose_corners_are_no_places_on_earth() {
+    // 1e6 m cells put the far corner 200,000 km east: no inverse projection exists there.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("utm-huge.tif");
+    write_geotiff(
+        &path,
+        200,
+        200,
+        (1e6, 1e6),
+        (566_710.0, 8_842_640.0),
+        &MGA48,
+    );
+    let somewhere = Geodetic::new(-10.0, 105.0, 0.0);
+    let e = new_scenario(&new_request(&path, somewhere, somewhere))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("--terrain: expected a DEM whose corners are places on Earth")
+            && e.contains("utm-huge.tif"),
+        "{e}"
+    );
+}
+
+#[test]
 fn scenario_new_places_start_and_goal_and_reads_back() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("dem.tif");

@@ -112,7 +112,15 @@ pub fn new_scenario(req: &NewScenarioRequest<'_>) -> Result<NewScenario, GeoErro
     let corners: Vec<Geodetic> = [(x0, y0), (x1, y0), (x0, y1), (x1, y1)]
         .iter()
         .map(|&(x, y)| frame.to_geodetic(glam::DVec3::new(x, y, 0.0)))
-        .collect::<Result<_, _>>()?;
+        .collect::<Result<_, _>>()
+        .map_err(|e| {
+            // A tie point or cell size far off the projection's range: say which file.
+            flag(
+                "--terrain",
+                "a DEM whose corners are places on Earth".into(),
+                format!("{}: {e}", dem.path.display()),
+            )
+        })?;
     let span = |f: fn(&Geodetic) -> f64| {
         let v: Vec<f64> = corners.iter().map(f).collect();
         (
