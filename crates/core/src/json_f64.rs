@@ -47,12 +47,16 @@ pub fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<f64, D:
     deserializer.deserialize_any(F64Visitor)
 }
 
+/// One value written and read as [`serialize`] and [`deserialize`] do, for the
+/// collections below.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct Item(#[serde(with = "self")] f64);
+
 /// The same for every element of a `Vec<f64>`: `#[serde(with = "json_f64::vec")]`.
 pub mod vec {
-    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+    use serde::{Deserialize, Deserializer, Serializer};
 
-    #[derive(Serialize, Deserialize)]
-    struct Item(#[serde(with = "super")] f64);
+    use super::Item;
 
     /// Writes each element as [`super::serialize`] does.
     ///
@@ -78,10 +82,9 @@ pub mod vec {
 pub mod map {
     use std::collections::BTreeMap;
 
-    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+    use serde::{Deserialize, Deserializer, Serializer};
 
-    #[derive(Serialize, Deserialize)]
-    struct Item(#[serde(with = "super")] f64);
+    use super::Item;
 
     /// Writes each value as [`super::serialize`] does.
     ///

@@ -87,16 +87,13 @@ pub fn bench_figures(dir: &Path, records: &[RunRecord]) -> Result<Vec<PathBuf>> 
                 }
             })
             .collect();
-        let safe = (1..)
-            .map(|k| {
-                if k == 1 {
-                    base.clone()
-                } else {
-                    format!("{base}_{k}")
-                }
-            })
-            .find(|s| taken.insert(s.clone()))
-            .unwrap_or(base);
+        let mut safe = base.clone();
+        for k in 2.. {
+            if taken.insert(safe.clone()) {
+                break;
+            }
+            safe = format!("{base}_{k}");
+        }
         let boxes = dir.join(format!("bench_{safe}"));
         swarmplan_plot::bench_boxplots(records, sc, &boxes)?;
         let conv = dir.join(format!("convergence_{safe}"));

@@ -11,6 +11,7 @@ use glam::DVec2;
 use super::enclosure::walled_in_starts;
 use super::spec::ScenarioSpec;
 use super::threat::Threat;
+use super::validate::number;
 
 /// One reason no plan can be feasible: the field at fault and why.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -173,14 +174,11 @@ fn in_threat(p: DVec2, d: f64, j: usize, t: &Threat, size: f64) -> String {
     )
 }
 
-/// A length for a message: with one decimal (`decimals` 1) or as written (0), and in
-/// exponent form from a billion metres on (a radius of 1e300 is a valid number and would
-/// otherwise print as 301 digits).
+/// A length for a message: with `decimals` decimals, or as [`number`] writes it when that
+/// is 0 or the length is huge.
 fn metres(v: f64, decimals: usize) -> String {
-    if v.abs() >= 1e9 {
-        format!("{v:.3e}")
-    } else if decimals == 0 {
-        v.to_string()
+    if decimals == 0 || v.abs() >= 1e9 {
+        number(v)
     } else {
         format!("{v:.decimals$}")
     }

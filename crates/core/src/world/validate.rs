@@ -110,17 +110,21 @@ fn bounded(field: &str, v: f64, limit: f64) -> Result<(), SpecError> {
     if v.is_finite() && v.abs() <= limit {
         Ok(())
     } else {
-        // A value far out is written as an exponent, not hundreds of digits.
-        let got = if v.abs() >= 1e9 {
-            format!("{v:e}")
-        } else {
-            v.to_string()
-        };
         Err(err(
             field,
             format!("a number in [-{limit:e}, {limit:e}] m"),
-            got,
+            number(v),
         ))
+    }
+}
+
+/// `v` for a message: as written, or as an exponent from a billion on (1e300 is a valid
+/// number and would otherwise print as 301 digits).
+pub(crate) fn number(v: f64) -> String {
+    if v.abs() >= 1e9 {
+        format!("{v:e}")
+    } else {
+        v.to_string()
     }
 }
 
