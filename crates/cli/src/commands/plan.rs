@@ -24,10 +24,13 @@ use crate::ScenarioArgs;
 pub struct PlanArgs {
     #[command(flatten)]
     pub scenario: ScenarioArgs,
-    /// Method: a preset (swarmplan, the default; pso, apso, qpso, gwo, abc, spso, dls-smpso,
-    /// dls-smpso-exemplar, pso-uniform, apso-uniform, swarmplan-uniform, lshade, cmaes) or
-    /// optimizer/encoding/init (e.g. pso/spherical/line).
-    #[arg(long = "method", visible_alias = "algo", default_value = "swarmplan")]
+    /// Method: a preset or optimizer/encoding/init (help text: [`method_help`]).
+    #[arg(
+        long = "method",
+        visible_alias = "algo",
+        default_value = "swarmplan",
+        help = method_help()
+    )]
     pub method: Method,
     /// Replace the method's encoding: spherical, cartesian, angle.
     #[arg(long)]
@@ -210,10 +213,27 @@ pub struct SettingsArgs {
     /// Evaluation budget per run (fair comparisons); with --iterations, whichever ends first.
     #[arg(long, allow_negative_numbers = true)]
     pub evaluations: Option<u64>,
-    /// Optimizer parameters as TOML (sections pso, dls_smpso, dls_exemplar, qpso, gwo, abc,
-    /// coop, lshade, cmaes).
-    #[arg(long)]
+    /// Optimizer parameters as TOML (help text: [`params_help`]).
+    #[arg(long, help = params_help())]
     pub params: Option<PathBuf>,
+}
+
+/// `--method`'s help, listing the presets from their one list.
+fn method_help() -> String {
+    format!(
+        "Method: a preset ({}; swarmplan is the default) or optimizer/encoding/init (e.g. \
+         pso/spherical/line; optimizers: {})",
+        swarmplan_core::method::preset_names(),
+        swarmplan_core::optim::OptimizerKind::names()
+    )
+}
+
+/// `--params`' help, listing the optimizers' sections from the registry.
+pub fn params_help() -> String {
+    format!(
+        "Optimizer parameters as TOML (sections {})",
+        swarmplan_core::optim::OptimizerKind::sections()
+    )
 }
 
 /// Algorithm parameters from a TOML file, then the population flag.
