@@ -225,9 +225,15 @@ impl fmt::Display for Method {
     }
 }
 
+/// Every preset's name, comma-separated in table order, for messages and help texts.
+#[must_use]
+pub fn preset_names() -> String {
+    PRESETS.map(|p| p.name).join(", ")
+}
+
 /// A method name that is neither a preset nor `optimizer/encoding/init`.
 #[derive(Debug, Error, Clone, PartialEq, Eq)]
-#[error("unknown method {0:?}; expected a preset (pso, apso, qpso, gwo, abc, spso, dls-smpso, dls-smpso-exemplar, pso-uniform, apso-uniform, swarmplan, swarmplan-uniform, lshade, cmaes) or optimizer/encoding/init such as pso/spherical/line")]
+#[error("unknown method {0:?}; expected a preset ({presets}) or optimizer/encoding/init such as pso/spherical/line", presets = preset_names())]
 pub struct UnknownMethod(pub String);
 
 impl FromStr for Method {

@@ -72,6 +72,20 @@ impl Default for AbcParams {
     }
 }
 
+impl super::params::OptimizerConfig for AbcParams {
+    fn population(&self) -> usize {
+        self.population
+    }
+
+    fn set_population(&mut self, n: usize) {
+        self.population = n;
+    }
+
+    fn build(&self) -> Box<dyn Optimizer> {
+        Box::new(Abc::new(*self))
+    }
+}
+
 /// ABC's fitness of a cost: 1 / (1 + f) for f >= 0, 1 + |f| below.
 #[must_use]
 pub fn fitness(cost: f64) -> f64 {

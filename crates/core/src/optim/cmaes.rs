@@ -125,6 +125,20 @@ impl Default for CmaesParams {
     }
 }
 
+impl super::params::OptimizerConfig for CmaesParams {
+    fn population(&self) -> usize {
+        self.population
+    }
+
+    fn set_population(&mut self, n: usize) {
+        self.population = n.max(4);
+    }
+
+    fn build(&self) -> Box<dyn Optimizer> {
+        Box::new(Cmaes::new(*self))
+    }
+}
+
 /// The strategy's state for one (re)start.
 #[derive(Debug, Clone)]
 struct State {

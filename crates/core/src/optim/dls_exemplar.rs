@@ -64,6 +64,20 @@ impl Default for DlsExemplarParams {
     }
 }
 
+impl super::params::OptimizerConfig for DlsExemplarParams {
+    fn population(&self) -> usize {
+        self.pso.population
+    }
+
+    fn set_population(&mut self, n: usize) {
+        self.pso.population = n;
+    }
+
+    fn build(&self) -> Box<dyn Optimizer> {
+        Box::new(DlsExemplar::new(*self))
+    }
+}
+
 /// DLS-SMPSO, exemplar mode.
 #[derive(Debug, Clone)]
 pub struct DlsExemplar {

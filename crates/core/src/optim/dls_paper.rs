@@ -83,6 +83,20 @@ impl Default for DlsPaperParams {
     }
 }
 
+impl super::params::OptimizerConfig for DlsPaperParams {
+    fn population(&self) -> usize {
+        self.pso.population
+    }
+
+    fn set_population(&mut self, n: usize) {
+        self.pso.population = n;
+    }
+
+    fn build(&self) -> Box<dyn Optimizer> {
+        Box::new(DlsPaper::new(*self))
+    }
+}
+
 /// DLS-SMPSO, paper mode.
 #[derive(Debug, Clone)]
 pub struct DlsPaper {

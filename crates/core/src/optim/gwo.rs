@@ -53,6 +53,20 @@ impl Default for GwoParams {
     }
 }
 
+impl super::params::OptimizerConfig for GwoParams {
+    fn population(&self) -> usize {
+        self.population
+    }
+
+    fn set_population(&mut self, n: usize) {
+        self.population = n;
+    }
+
+    fn build(&self) -> Box<dyn Optimizer> {
+        Box::new(Gwo::new(*self))
+    }
+}
+
 /// The best three distinct positions seen, best first.
 #[derive(Debug, Clone)]
 pub(crate) struct Leaders {

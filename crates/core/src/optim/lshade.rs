@@ -114,6 +114,20 @@ impl Default for LshadeParams {
     }
 }
 
+impl super::params::OptimizerConfig for LshadeParams {
+    fn population(&self) -> usize {
+        self.max_population
+    }
+
+    fn set_population(&mut self, n: usize) {
+        self.max_population = n.max(self.min_population);
+    }
+
+    fn build(&self) -> Box<dyn Optimizer> {
+        Box::new(Lshade::new(*self))
+    }
+}
+
 /// The memory value that marks "CR = 0 from now on" (the paper's terminal value).
 const TERMINAL: f64 = -1.0;
 

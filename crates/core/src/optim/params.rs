@@ -12,15 +12,15 @@ use std::str::FromStr;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use super::abc::{Abc, AbcParams};
-use super::cmaes::{Cmaes, CmaesParams};
-use super::cooperative::{CoopParams, Cooperative};
-use super::dls_exemplar::{DlsExemplar, DlsExemplarParams};
-use super::dls_paper::{DlsPaper, DlsPaperParams};
-use super::gwo::{Gwo, GwoParams};
-use super::lshade::{Lshade, LshadeParams};
-use super::pso::{Pso, PsoParams};
-use super::qpso::{Qpso, QpsoParams};
+use super::abc::AbcParams;
+use super::cmaes::CmaesParams;
+use super::cooperative::CoopParams;
+use super::dls_exemplar::DlsExemplarParams;
+use super::dls_paper::DlsPaperParams;
+use super::gwo::GwoParams;
+use super::lshade::LshadeParams;
+use super::pso::PsoParams;
+use super::qpso::QpsoParams;
 use super::Optimizer;
 
 /// Population sizes every optimizer accepts, from a TOML section or `--population` alike: at
@@ -66,54 +66,153 @@ pub(crate) fn check(
     }
 }
 
-/// The optimizers, one file each. Adding one is a variant here, its parameter section in
-/// [`OptimizerParams`] and a line in each `match` below.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum OptimizerKind {
-    /// Inertia-weight PSO with SPSO's clamping and mirroring ([`super::pso`]).
-    Pso,
+/// What an optimizer's parameter section tells the registry (`optimizer_registry!` below):
+/// the population it runs, how `--population` sets it, and how to build the optimizer.
+/// The section also has an inherent `DEFAULT` (the paper's setting, feeding `Default` and
+/// serde) and `validate`.
+pub trait OptimizerConfig {
+    /// The population size the optimizer will use (for ABC: bees, twice the food sources).
+    fn population(&self) -> usize;
+    /// Sets the population size (e.g. the population-500 runs), raised to the optimizer's
+    /// least workable size.
+    fn set_population(&mut self, n: usize);
+    /// Makes the optimizer. The section should have passed its `validate`; out-of-range
+    /// sizes are raised to the smallest workable value rather than panicking.
+    fn build(&self) -> Box<dyn Optimizer>;
+    /// The budget of a run given none: the paper's 200 iterations unless the optimizer's
+    /// iterations mean something else.
+    fn default_budget(&self) -> super::Budget {
+        super::Budget::DEFAULT
+    }
+}
+
+/// The one list of optimizers. Each line names the [`OptimizerKind`] variant, its name on
+/// the command line and in records, its section in [`OptimizerParams`] (and in a
+/// `--params` TOML file) and the section's type, which implements [`OptimizerConfig`].
+/// Everything that enumerates optimizers (the enum, `ALL`, names, the parameter struct,
+/// validation, population, [`build`], messages and help texts) is generated from it, so a
+/// new optimizer is its own file and one line here (docs/contributing.md).
+macro_rules! optimizer_registry {
+    ($($(#[$doc:meta])* $kind:ident = $name:literal, $section:ident: $params:ty;)*) => {
+        /// The optimizers, one file each, listed once in the registry of `optim/params.rs`.
+        #[derive(
+            Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize,
+        )]
+        pub enum OptimizerKind {
+            $($(#[$doc])* #[serde(rename = $name)] $kind,)*
+        }
+
+        impl OptimizerKind {
+            /// Every optimizer, in the registry's order.
+            pub const ALL: [Self; [$(stringify!($kind)),*].len()] = [$(Self::$kind),*];
+
+            /// The name on the command line and in records (`dls-paper`).
+            #[must_use]
+            pub const fn name(self) -> &'static str {
+                match self {
+                    $(Self::$kind => $name,)*
+                }
+            }
+
+            /// The optimizer's section in [`OptimizerParams`] and in a `--params` file
+            /// (`dls_smpso`).
+            #[must_use]
+            pub const fn section(self) -> &'static str {
+                match self {
+                    $(Self::$kind => stringify!($section),)*
+                }
+            }
+
+            /// The budget a run gets when none is given: the paper's 200 iterations for
+            /// the paper's optimizers, [`PAPER_EVALUATIONS`] for `coop` (whose iterations
+            /// are 10 evaluations).
+            #[must_use]
+            pub fn default_budget(self) -> super::Budget {
+                match self {
+                    $(Self::$kind => <$params>::DEFAULT.default_budget(),)*
+                }
+            }
+        }
+
+        /// Parameters of every optimizer (a section each); the default is the paper's
+        /// setting.
+        #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+        #[serde(deny_unknown_fields, default)]
+        pub struct OptimizerParams {
+            $($(#[$doc])* pub $section: $params,)*
+        }
+
+        impl OptimizerParams {
+            /// Every section at its default.
+            pub const DEFAULT: Self = Self {
+                $($section: <$params>::DEFAULT,)*
+            };
+
+            /// Checks every section; the error names the first bad field with its section.
+            pub fn validate(&self) -> Result<(), ParamsError> {
+                $(self.$section.validate().map_err(|e| e.within(stringify!($section)))?;)*
+                Ok(())
+            }
+
+            /// The population size `kind` will use (for ABC: bees, twice the food sources).
+            #[must_use]
+            pub fn population(&self, kind: OptimizerKind) -> usize {
+                match kind {
+                    $(OptimizerKind::$kind => self.$section.population(),)*
+                }
+            }
+
+            /// Sets the population size of every optimizer (e.g. the population-500 runs).
+            pub fn set_population(&mut self, n: usize) {
+                $(self.$section.set_population(n);)*
+            }
+        }
+
+        /// Makes the optimizer `kind`. `params` should have passed
+        /// [`OptimizerParams::validate`] (see [`try_build`]); out-of-range sizes are raised
+        /// to the smallest workable value rather than panicking.
+        #[must_use]
+        pub fn build(kind: OptimizerKind, params: &OptimizerParams) -> Box<dyn Optimizer> {
+            match kind {
+                $(OptimizerKind::$kind => params.$section.build(),)*
+            }
+        }
+    };
+}
+
+optimizer_registry! {
+    /// Inertia-weight PSO with SPSO's clamping and mirroring ([`super::pso`]); PSO, APSO
+    /// and SPSO share it, on whatever encoding the method names.
+    Pso = "pso", pso: PsoParams;
     /// DLS-SMPSO as the paper defines it ([`super::dls_paper`]).
-    DlsPaper,
+    DlsPaper = "dls-paper", dls_smpso: DlsPaperParams;
     /// DLS-SMPSO with Xu et al.'s exemplars ([`super::dls_exemplar`]).
-    DlsExemplar,
-    Qpso,
-    Gwo,
-    Abc,
+    DlsExemplar = "dls-exemplar", dls_exemplar: DlsExemplarParams;
+    /// Quantum-behaved PSO ([`super::qpso`]).
+    Qpso = "qpso", qpso: QpsoParams;
+    /// Grey wolf optimizer ([`super::gwo`]).
+    Gwo = "gwo", gwo: GwoParams;
+    /// Artificial bee colony ([`super::abc`]).
+    Abc = "abc", abc: AbcParams;
     /// Cooperative coevolution, feasibility first ([`super::cooperative`]): swarmplan's own.
-    Coop,
+    Coop = "coop", coop: CoopParams;
     /// L-SHADE ([`super::lshade`]): a modern baseline, CEC 2014's winner.
-    Lshade,
+    Lshade = "lshade", lshade: LshadeParams;
     /// CMA-ES with IPOP restarts ([`super::cmaes`]): a modern baseline.
-    Cmaes,
+    Cmaes = "cmaes", cmaes: CmaesParams;
 }
 
 impl OptimizerKind {
-    pub const ALL: [Self; 9] = [
-        Self::Pso,
-        Self::DlsPaper,
-        Self::DlsExemplar,
-        Self::Qpso,
-        Self::Gwo,
-        Self::Abc,
-        Self::Coop,
-        Self::Lshade,
-        Self::Cmaes,
-    ];
-
+    /// Every optimizer's name, comma-separated, for messages and help texts.
     #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::Pso => "pso",
-            Self::DlsPaper => "dls-paper",
-            Self::DlsExemplar => "dls-exemplar",
-            Self::Qpso => "qpso",
-            Self::Gwo => "gwo",
-            Self::Abc => "abc",
-            Self::Coop => "coop",
-            Self::Lshade => "lshade",
-            Self::Cmaes => "cmaes",
-        }
+    pub fn names() -> String {
+        Self::ALL.map(Self::name).join(", ")
+    }
+
+    /// Every optimizer's parameter section, comma-separated, for messages and help texts.
+    #[must_use]
+    pub fn sections() -> String {
+        Self::ALL.map(Self::section).join(", ")
     }
 }
 
@@ -123,18 +222,6 @@ impl OptimizerKind {
 /// have no paper setting of their own.
 pub const PAPER_EVALUATIONS: u64 = 38_700;
 
-impl OptimizerKind {
-    /// The budget a run gets when none is given: the paper's 200 iterations for the paper's
-    /// optimizers, [`PAPER_EVALUATIONS`] for `coop` (whose iterations are 10 evaluations).
-    #[must_use]
-    pub const fn default_budget(self) -> super::Budget {
-        match self {
-            Self::Coop => super::Budget::evaluations(PAPER_EVALUATIONS),
-            _ => super::Budget::DEFAULT,
-        }
-    }
-}
-
 impl fmt::Display for OptimizerKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
@@ -143,9 +230,7 @@ impl fmt::Display for OptimizerKind {
 
 /// An optimizer name that is not one of [`OptimizerKind::ALL`].
 #[derive(Debug, Error, Clone, PartialEq, Eq)]
-#[error(
-    "unknown optimizer {0:?}; expected one of pso, dls-paper, dls-exemplar, qpso, gwo, abc, coop"
-)]
+#[error("unknown optimizer {0:?}; expected one of {names}", names = OptimizerKind::names())]
 pub struct UnknownOptimizer(pub String);
 
 impl FromStr for OptimizerKind {
@@ -159,106 +244,9 @@ impl FromStr for OptimizerKind {
     }
 }
 
-/// Parameters of every optimizer (a section each); the default is the paper's setting.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct OptimizerParams {
-    /// PSO on whatever encoding the method names (PSO, APSO and SPSO share it).
-    pub pso: PsoParams,
-    /// DLS-SMPSO, paper mode.
-    pub dls_smpso: DlsPaperParams,
-    /// DLS-SMPSO, exemplar mode.
-    pub dls_exemplar: DlsExemplarParams,
-    pub qpso: QpsoParams,
-    pub gwo: GwoParams,
-    pub abc: AbcParams,
-    /// swarmplan's cooperative optimizer.
-    pub coop: CoopParams,
-    pub lshade: LshadeParams,
-    pub cmaes: CmaesParams,
-}
-
-impl OptimizerParams {
-    pub const DEFAULT: Self = Self {
-        pso: PsoParams::DEFAULT,
-        dls_smpso: DlsPaperParams::DEFAULT,
-        dls_exemplar: DlsExemplarParams::DEFAULT,
-        qpso: QpsoParams::DEFAULT,
-        gwo: GwoParams::DEFAULT,
-        abc: AbcParams::DEFAULT,
-        coop: CoopParams::DEFAULT,
-        lshade: LshadeParams::DEFAULT,
-        cmaes: CmaesParams::DEFAULT,
-    };
-
-    /// Checks every section; the error names the first bad field with its section.
-    pub fn validate(&self) -> Result<(), ParamsError> {
-        self.pso.validate().map_err(|e| e.within("pso"))?;
-        self.dls_smpso
-            .validate()
-            .map_err(|e| e.within("dls_smpso"))?;
-        self.dls_exemplar
-            .validate()
-            .map_err(|e| e.within("dls_exemplar"))?;
-        self.qpso.validate().map_err(|e| e.within("qpso"))?;
-        self.gwo.validate().map_err(|e| e.within("gwo"))?;
-        self.abc.validate().map_err(|e| e.within("abc"))?;
-        self.coop.validate().map_err(|e| e.within("coop"))?;
-        self.lshade.validate().map_err(|e| e.within("lshade"))?;
-        self.cmaes.validate().map_err(|e| e.within("cmaes"))
-    }
-
-    /// The population size `kind` will use (for ABC: bees, twice the food sources).
-    #[must_use]
-    pub fn population(&self, kind: OptimizerKind) -> usize {
-        match kind {
-            OptimizerKind::Pso => self.pso.population,
-            OptimizerKind::DlsPaper => self.dls_smpso.pso.population,
-            OptimizerKind::DlsExemplar => self.dls_exemplar.pso.population,
-            OptimizerKind::Qpso => self.qpso.population,
-            OptimizerKind::Gwo => self.gwo.population,
-            OptimizerKind::Abc => self.abc.population,
-            OptimizerKind::Coop => self.coop.population,
-            OptimizerKind::Lshade => self.lshade.max_population,
-            OptimizerKind::Cmaes => self.cmaes.population,
-        }
-    }
-
-    /// Sets the population size of every optimizer (e.g. the population-500 runs).
-    pub fn set_population(&mut self, n: usize) {
-        self.pso.population = n;
-        self.dls_smpso.pso.population = n;
-        self.dls_exemplar.pso.population = n;
-        self.qpso.population = n;
-        self.gwo.population = n;
-        self.abc.population = n;
-        self.coop.population = n;
-        self.lshade.max_population = n.max(self.lshade.min_population);
-        self.cmaes.population = n.max(4);
-    }
-}
-
 impl Default for OptimizerParams {
     fn default() -> Self {
         Self::DEFAULT
-    }
-}
-
-/// Makes the optimizer `kind`. `params` should have passed [`OptimizerParams::validate`]
-/// (see [`try_build`]); out-of-range sizes are raised to the smallest workable value rather
-/// than panicking.
-#[must_use]
-pub fn build(kind: OptimizerKind, params: &OptimizerParams) -> Box<dyn Optimizer> {
-    match kind {
-        OptimizerKind::Pso => Box::new(Pso::new(params.pso)),
-        OptimizerKind::DlsPaper => Box::new(DlsPaper::new(params.dls_smpso)),
-        OptimizerKind::DlsExemplar => Box::new(DlsExemplar::new(params.dls_exemplar)),
-        OptimizerKind::Qpso => Box::new(Qpso::new(params.qpso)),
-        OptimizerKind::Gwo => Box::new(Gwo::new(params.gwo)),
-        OptimizerKind::Abc => Box::new(Abc::new(params.abc)),
-        OptimizerKind::Coop => Box::new(Cooperative::new(params.coop)),
-        OptimizerKind::Lshade => Box::new(Lshade::new(params.lshade)),
-        OptimizerKind::Cmaes => Box::new(Cmaes::new(params.cmaes)),
     }
 }
 

@@ -30,11 +30,10 @@
 //! one optimizer with the same parameters; only the encoding differs. DLS-SMPSO
 //! ([`super::dls`]) reuses the swarm machinery below.
 
-use rand::Rng as _;
 use serde::{Deserialize, Serialize};
 
 use super::params::{check, ParamsError};
-use super::swarm::{into_bound, row, row_mut, BestSoFar};
+use super::swarm::{move_coordinate, row, row_mut, BestSoFar, VelocityRule};
 use super::{Evaluator, Optimizer, Progress};
 use crate::problem::{Bound, Evaluation};
 use crate::rng::Rng;
@@ -136,6 +135,20 @@ impl PsoParams {
 impl Default for PsoParams {
     fn default() -> Self {
         Self::DEFAULT
+    }
+}
+
+impl super::params::OptimizerConfig for PsoParams {
+    fn population(&self) -> usize {
+        self.population
+    }
+
+    fn set_population(&mut self, n: usize) {
+        self.population = n;
+    }
+
+    fn build(&self) -> Box<dyn Optimizer> {
+        Box::new(Pso::new(*self))
     }
 }
 
@@ -250,31 +263,28 @@ impl Swarm {
         rng: &mut Rng,
     ) {
         let dim = self.dim;
-        let PsoParams {
-            cognitive: c1,
-            social: c2,
-            mirror_velocity,
-            ..
-        } = self.params;
-        let w = self.w;
+        let rule = VelocityRule {
+            inertia: self.w,
+            cognitive: self.params.cognitive,
+            social: self.params.social,
+            pull: Some(lambda),
+            mirror: self.params.mirror_velocity,
+        };
         let x = row_mut(&mut self.x, i, dim);
         let v = row_mut(&mut self.v, i, dim);
         let p = guide.unwrap_or(row(&self.pbest, i, dim));
         let g = &self.gbest.x;
         for j in 0..dim {
-            let r1: f64 = rng.random();
-            let r2: f64 = rng.random();
-            let to_g = g[j] - x[j];
-            let vj = (w * v[j] + c1 * r1 * (p[j] - x[j]) + c2 * r2 * to_g + lambda * to_g)
-                .clamp(-self.vmax[j], self.vmax[j]);
-            let b = &bounds[j];
-            let moved = x[j] + vj;
-            if !b.periodic && !b.contains(moved) && mirror_velocity {
-                v[j] = -vj;
-            } else {
-                v[j] = vj;
-            }
-            x[j] = into_bound(b, moved);
+            move_coordinate(
+                &mut x[j],
+                &mut v[j],
+                p[j],
+                g[j],
+                self.vmax[j],
+                &bounds[j],
+                &rule,
+                rng,
+            );
         }
     }
 

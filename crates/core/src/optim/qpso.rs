@@ -81,6 +81,20 @@ impl Default for QpsoParams {
     }
 }
 
+impl super::params::OptimizerConfig for QpsoParams {
+    fn population(&self) -> usize {
+        self.population
+    }
+
+    fn set_population(&mut self, n: usize) {
+        self.population = n;
+    }
+
+    fn build(&self) -> Box<dyn Optimizer> {
+        Box::new(Qpso::new(*self))
+    }
+}
+
 /// QPSO.
 #[derive(Debug, Clone)]
 pub struct Qpso {

@@ -1,4 +1,5 @@
-//! Small helpers every population-based optimizer here shares: bringing a moved coordinate back into its bound, and a best-so-far record.
+//! Small helpers every population-based optimizer here shares: bringing a moved coordinate
+//! back into its bound, the PSO velocity kernel, and a best-so-far record.
 //!
 //! Populations are stored as flat row-major `Vec<f64>` (one row of `dim` values per
 //! individual), allocated once per run, so the inner loops never allocate.
@@ -14,6 +15,59 @@ pub(crate) fn into_bound(b: &Bound, x: f64) -> f64 {
     } else {
         b.project(x)
     }
+}
+
+/// The coefficients of one PSO velocity update ([`move_coordinate`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct VelocityRule {
+    /// Inertia weight w.
+    pub inertia: f64,
+    /// Cognitive coefficient c1.
+    pub cognitive: f64,
+    /// Social coefficient c2.
+    pub social: f64,
+    /// DLS-SMPSO's deterministic pull lambda (gbest - x) (Eq. 21), `None` in plain PSO.
+    /// An `Option`, not 0: adding 0 (gbest - x) would change the sign of a zero velocity.
+    pub pull: Option<f64>,
+    /// Negate a velocity whose move left a non-periodic bound (SPSO's mirroring).
+    pub mirror: bool,
+}
+
+/// Moves one coordinate of one particle, the kernel every swarm here shares (`pso`, the
+/// DLS modes and `coop`'s sub-swarms), with fresh r1, r2 ~ U(0, 1) drawn in that order:
+///
+/// ```text
+/// v <- clamp(w v + c1 r1 (p - x) + c2 r2 (g - x) [+ lambda (g - x)], -vmax, vmax)
+/// x <- into_bound(x + v); v <- -v if the move left a non-periodic bound and rule.mirror
+/// ```
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub(crate) fn move_coordinate(
+    x: &mut f64,
+    v: &mut f64,
+    guide: f64,
+    gbest: f64,
+    vmax: f64,
+    bound: &Bound,
+    rule: &VelocityRule,
+    rng: &mut crate::rng::Rng,
+) {
+    use rand::Rng as _;
+    let r1: f64 = rng.random();
+    let r2: f64 = rng.random();
+    let to_g = gbest - *x;
+    let mut vj = rule.inertia * *v + rule.cognitive * r1 * (guide - *x) + rule.social * r2 * to_g;
+    if let Some(lambda) = rule.pull {
+        vj += lambda * to_g;
+    }
+    let vj = vj.clamp(-vmax, vmax);
+    let moved = *x + vj;
+    *v = if rule.mirror && !bound.periodic && !bound.contains(moved) {
+        -vj
+    } else {
+        vj
+    };
+    *x = into_bound(bound, moved);
 }
 
 /// Row `i` of a flat population with rows of `dim` values.
