@@ -14,7 +14,7 @@ use swarmplan_core::encoding::{EncodingKind, InitKind};
 use swarmplan_core::method::Method;
 use swarmplan_core::plan::Plan;
 use swarmplan_core::planning::PlanningProblem;
-use swarmplan_core::problem::{Bound as VarBound, Problem as _};
+use swarmplan_core::problem::{BlockProblem, Bound as VarBound, Problem as _};
 use swarmplan_core::rng::rng_from_seed;
 use swarmplan_core::world::World;
 use swarmplan_io::artifact::AssessmentReport;

@@ -156,11 +156,44 @@ pub trait Problem: Sync {
         self.bounds().len()
     }
 
+    /// [`Problem::evaluate`] for a caller that only needs to know whether `x` costs less
+    /// than `cutoff`: `None` means its cost is known to exceed `cutoff`, so it does not. Must
+    /// otherwise return exactly what `evaluate` returns. The default evaluates in full.
+    fn evaluate_cost_bounded(&self, x: &[f64], cutoff: f64) -> Option<Evaluation> {
+        let _ = cutoff;
+        Some(self.evaluate(x))
+    }
+
+    /// [`Problem::evaluate_cost_bounded`] on buffers kept for `slot`, the caller's index of
+    /// the point `x` was made from (an ABC food source): a problem whose evaluation reuses
+    /// the work of the previous one on the same buffers does less when `x` is a small change
+    /// of the slot's previous point than of whatever was evaluated last. Must return exactly
+    /// what [`Problem::evaluate_cost_bounded`] returns. The default ignores the slot.
+    fn evaluate_cost_bounded_in(&self, x: &[f64], cutoff: f64, slot: usize) -> Option<Evaluation> {
+        let _ = slot;
+        self.evaluate_cost_bounded(x, cutoff)
+    }
+
+    /// The block-wise view of this problem, for optimizers that decompose the search
+    /// (`coop`): `Some(self)` from a problem that implements [`BlockProblem`]; `None` (the
+    /// default) for one whose vector is a single block with nothing known of where its
+    /// violations lie.
+    fn blocks(&self) -> Option<&dyn BlockProblem> {
+        None
+    }
+}
+
+/// A problem whose variables come in blocks (one UAV's path each in a planning problem),
+/// with what a decomposing optimizer (`coop`) asks of it beyond [`Problem`]: the block size,
+/// each block's share of the violation, and local moves of one block. Every method has a
+/// default that knows nothing, so a problem implements only what it can say. Reached
+/// through [`Problem::blocks`], so the optimizers' common interface stays narrow.
+pub trait BlockProblem: Problem {
     /// A local move of block `block` of `x`, written into `out` (that block's values, inside
     /// the bounds): for a planning problem, one free waypoint of the UAV moved by a few
     /// separation distances (or, at a zone the UAV shares, placed near it at a clear
     /// bearing), the rest of its path kept where it is. `site` picks what moves
-    /// (an index into [`Problem::hot_spots`]' weights, which may include sites other than
+    /// (an index into [`BlockProblem::hot_spots`]' weights, which may include sites other than
     /// waypoints, such as a departure delay); `None` draws a waypoint uniformly. Returns
     /// false, writing nothing, when the problem has no such move (the default). Not an
     /// evaluation; it draws only from `rng`.
@@ -176,7 +209,7 @@ pub trait Problem: Sync {
         false
     }
 
-    /// Weights over the sites of block `block`'s [nudges](Problem::nudge), by how much of
+    /// Weights over the sites of block `block`'s [nudges](BlockProblem::nudge), by how much of
     /// `x`'s hard violation lies at each (a planning problem: per free waypoint of the UAV,
     /// the violations it or its pairs hold next to it), written into `out`; empty when
     /// nothing is known. Returns whether it assessed `x`, which the
@@ -213,25 +246,7 @@ pub trait Problem: Sync {
         self.evaluate(x)
     }
 
-    /// [`Problem::evaluate`] for a caller that only needs to know whether `x` costs less
-    /// than `cutoff`: `None` means its cost is known to exceed `cutoff`, so it does not. Must
-    /// otherwise return exactly what `evaluate` returns. The default evaluates in full.
-    fn evaluate_cost_bounded(&self, x: &[f64], cutoff: f64) -> Option<Evaluation> {
-        let _ = cutoff;
-        Some(self.evaluate(x))
-    }
-
-    /// [`Problem::evaluate_cost_bounded`] on buffers kept for `slot`, the caller's index of
-    /// the point `x` was made from (an ABC food source): a problem whose evaluation reuses
-    /// the work of the previous one on the same buffers does less when `x` is a small change
-    /// of the slot's previous point than of whatever was evaluated last. Must return exactly
-    /// what [`Problem::evaluate_cost_bounded`] returns. The default ignores the slot.
-    fn evaluate_cost_bounded_in(&self, x: &[f64], cutoff: f64, slot: usize) -> Option<Evaluation> {
-        let _ = slot;
-        self.evaluate_cost_bounded(x, cutoff)
-    }
-
-    /// [`Problem::evaluate_blocks`] for a caller that only needs to know whether `x` beats,
+    /// [`BlockProblem::evaluate_blocks`] for a caller that only needs to know whether `x` beats,
     /// by Deb's rules, a candidate whose violation is `cutoff`: `None` (and `by_block`
     /// unspecified) means the violation is known to exceed `cutoff`, so it does not. Must
     /// otherwise return exactly what `evaluate_blocks` returns. The default evaluates in full.

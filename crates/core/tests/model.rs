@@ -9,6 +9,7 @@ use swarmplan_core::cost::comm::{contact_at, Contact};
 use swarmplan_core::cost::TermId;
 use swarmplan_core::feasibility::{check, ViolationKind};
 use swarmplan_core::plan::{Path, Plan};
+use swarmplan_core::problem::BlockProblem;
 use swarmplan_core::world::spec::*;
 use swarmplan_core::world::terrain::Sampling;
 use swarmplan_core::world::{Terrain, Threat, World};
@@ -903,7 +904,6 @@ fn a_nudge_moves_one_free_waypoint_of_one_uav_and_keeps_the_rest() {
 fn hot_spots_weigh_the_free_waypoints_next_to_a_uavs_violations() {
     use swarmplan_core::encoding::{EncodingKind, InitKind};
     use swarmplan_core::planning::PlanningProblem;
-    use swarmplan_core::problem::Problem;
     let mut s = spec(&[[100.0, 100.0, 150.0], [100.0, 500.0, 150.0]]);
     let w = World::new(s.clone(), flat()).unwrap();
     let p = PlanningProblem::new(&w, EncodingKind::Cartesian, InitKind::Line);
@@ -938,7 +938,6 @@ fn hot_spots_weigh_the_free_waypoints_next_to_a_uavs_violations() {
 fn with_delays_free_a_waiting_uavs_energy_weighs_its_delay_and_a_nudge_there_moves_only_it() {
     use swarmplan_core::encoding::{EncodingKind, InitKind};
     use swarmplan_core::planning::PlanningProblem;
-    use swarmplan_core::problem::Problem;
     let mut s = spec(&[[100.0, 100.0, 150.0], [100.0, 500.0, 150.0]]);
     s.timing.max_delay = 0.2;
     for u in &mut s.uavs {
@@ -983,7 +982,6 @@ fn with_delays_free_a_waiting_uavs_energy_weighs_its_delay_and_a_nudge_there_mov
 fn a_nudge_at_a_shared_zone_puts_the_end_waypoint_at_a_clear_bearing_near_it() {
     use swarmplan_core::encoding::{EncodingKind, InitKind};
     use swarmplan_core::planning::PlanningProblem;
-    use swarmplan_core::problem::Problem;
     use swarmplan_core::zone_slot::{bearing, min_angle, SLOT_DISTANCE, SLOT_MARGIN};
     let turned = |starts: &[[f64; 3]], at_start: bool| {
         let s = spec(starts);

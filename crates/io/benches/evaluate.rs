@@ -23,6 +23,7 @@ use swarmplan_core::encoding::{EncodingKind, InitKind};
 use swarmplan_core::method::Method;
 use swarmplan_core::optim::{Budget, OptimizerParams};
 use swarmplan_core::planning::PlanningProblem;
+use swarmplan_core::problem::BlockProblem;
 use swarmplan_core::problem::Problem;
 use swarmplan_core::rng::rng_from_seed;
 use swarmplan_core::run::{run, RunRequest};

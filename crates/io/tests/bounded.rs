@@ -7,6 +7,7 @@
 use swarmplan_core::method::PRESETS;
 use swarmplan_core::optim::{build, solve, Budget, OptimizerParams, Outcome};
 use swarmplan_core::planning::PlanningProblem;
+use swarmplan_core::problem::BlockProblem;
 use swarmplan_core::problem::{Bound, Evaluation, Problem};
 use swarmplan_core::rng::{rng_from_seed, Rng};
 use swarmplan_io::scenario::{build_world, load_spec};
@@ -25,6 +26,12 @@ impl Problem for Full<'_> {
     fn sample_initial(&self, rng: &mut Rng, out: &mut [f64]) {
         self.0.sample_initial(rng, out);
     }
+    fn blocks(&self) -> Option<&dyn BlockProblem> {
+        Some(self)
+    }
+}
+
+impl BlockProblem for Full<'_> {
     fn nudge(
         &self,
         x: &[f64],
@@ -35,12 +42,15 @@ impl Problem for Full<'_> {
     ) -> bool {
         self.0.nudge(x, block, site, rng, out)
     }
+
     fn hot_spots(&self, x: &[f64], block: usize, out: &mut Vec<f64>) -> bool {
         self.0.hot_spots(x, block, out)
     }
+
     fn evaluate_blocks(&self, x: &[f64], by_block: &mut Vec<f64>) -> Evaluation {
         self.0.evaluate_blocks(x, by_block)
     }
+
     fn block_size(&self) -> usize {
         self.0.block_size()
     }

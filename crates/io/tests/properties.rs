@@ -5,6 +5,7 @@
 #![allow(clippy::unwrap_used)] // tests fail loudly by design
 
 use std::sync::OnceLock;
+use swarmplan_core::problem::BlockProblem;
 
 use proptest::prelude::*;
 use swarmplan_core::cost::assess;

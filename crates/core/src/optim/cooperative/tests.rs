@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::optim::{solve, Budget};
-use crate::problem::{Bound, Problem};
+use crate::problem::{BlockProblem, Bound, Problem};
 use crate::rng::rng_from_seed;
 
 /// Sphere in blocks of 3, with a "constraint" x_0 >= 1 (violation 1 - x_0).
@@ -19,6 +19,12 @@ impl Problem for Constrained {
             violation,
         )
     }
+    fn blocks(&self) -> Option<&dyn BlockProblem> {
+        Some(self)
+    }
+}
+
+impl BlockProblem for Constrained {
     fn block_size(&self) -> usize {
         3
     }
@@ -34,9 +40,16 @@ impl Problem for GivingUp {
     fn evaluate(&self, x: &[f64]) -> Evaluation {
         self.0.evaluate(x)
     }
+    fn blocks(&self) -> Option<&dyn BlockProblem> {
+        Some(self)
+    }
+}
+
+impl BlockProblem for GivingUp {
     fn block_size(&self) -> usize {
         self.0.block_size()
     }
+
     fn evaluate_blocks_bounded(
         &self,
         x: &[f64],
@@ -85,6 +98,12 @@ impl Problem for Plateau {
     fn evaluate(&self, _: &[f64]) -> Evaluation {
         Evaluation::new(1e3, 1.0)
     }
+    fn blocks(&self) -> Option<&dyn BlockProblem> {
+        Some(self)
+    }
+}
+
+impl BlockProblem for Plateau {
     fn block_size(&self) -> usize {
         2
     }
@@ -129,6 +148,12 @@ impl Problem for Creeping {
     fn evaluate(&self, x: &[f64]) -> Evaluation {
         Evaluation::new(1e3, 1.0 + x[0])
     }
+    fn blocks(&self) -> Option<&dyn BlockProblem> {
+        Some(self)
+    }
+}
+
+impl BlockProblem for Creeping {
     fn block_size(&self) -> usize {
         2
     }
@@ -192,12 +217,19 @@ impl Problem for LastBlockViolated {
         prev.copy_from_slice(x);
         Evaluation::new(x.iter().map(|v| v * v).sum(), 10.0 - x[9])
     }
+    fn blocks(&self) -> Option<&dyn BlockProblem> {
+        Some(self)
+    }
+}
+
+impl BlockProblem for LastBlockViolated {
     fn evaluate_blocks(&self, x: &[f64], by_block: &mut Vec<f64>) -> Evaluation {
         let e = self.evaluate(x);
         by_block.clear();
         by_block.extend([0.0, 0.0, 0.0, e.violation]);
         e
     }
+
     fn block_size(&self) -> usize {
         3
     }
@@ -248,12 +280,19 @@ impl Problem for NarrowGap {
         let cost = x[..6].iter().map(|v| (v - 0.9).powi(2)).sum();
         Evaluation::new(cost, if inside { 0.0 } else { 1.0 })
     }
+    fn blocks(&self) -> Option<&dyn BlockProblem> {
+        Some(self)
+    }
+}
+
+impl BlockProblem for NarrowGap {
     fn evaluate_blocks(&self, x: &[f64], by_block: &mut Vec<f64>) -> Evaluation {
         let e = self.evaluate(x);
         by_block.clear();
         by_block.extend([0.0, e.violation]);
         e
     }
+
     fn block_size(&self) -> usize {
         6
     }
@@ -325,14 +364,22 @@ impl Problem for CountsMoves {
             .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         self.inner.evaluate(x)
     }
+    fn blocks(&self) -> Option<&dyn BlockProblem> {
+        Some(self)
+    }
+}
+
+impl BlockProblem for CountsMoves {
     fn evaluate_blocks(&self, x: &[f64], by_block: &mut Vec<f64>) -> Evaluation {
         self.evaluated
             .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         self.inner.evaluate_blocks(x, by_block)
     }
+
     fn block_size(&self) -> usize {
         3
     }
+
     fn nudge(
         &self,
         x: &[f64],
@@ -346,6 +393,7 @@ impl Problem for CountsMoves {
         out.copy_from_slice(&x[3 * block..3 * block + 3]);
         true
     }
+
     fn shifted_copy(
         &self,
         x: &[f64],
@@ -361,6 +409,7 @@ impl Problem for CountsMoves {
         out.copy_from_slice(&x[3 * donor..3 * donor + 3]);
         true
     }
+
     fn hot_spots(&self, _: &[f64], block: usize, out: &mut Vec<f64>) -> bool {
         self.spots.lock().expect("not poisoned")[block] += 1;
         out.clear();
@@ -541,6 +590,12 @@ impl Problem for Unpenalised {
     fn evaluate(&self, x: &[f64]) -> Evaluation {
         Evaluation::new(x.iter().map(|v| v * v).sum(), (1.0 - x[0]).max(0.0))
     }
+    fn blocks(&self) -> Option<&dyn BlockProblem> {
+        Some(self)
+    }
+}
+
+impl BlockProblem for Unpenalised {
     fn block_size(&self) -> usize {
         3
     }

@@ -16,6 +16,8 @@ use rayon::prelude::*;
 
 use super::progress::Progress;
 use crate::problem::{Bound, Evaluation, Problem};
+
+mod blocks;
 use crate::rng::Rng;
 
 /// Counts evaluations of one problem and refuses them past an optional budget.
@@ -63,44 +65,6 @@ impl<'a> Evaluator<'a> {
         self.problem.sample_initial(rng, out);
     }
 
-    /// The problem's local move of one block ([`Problem::nudge`]; not an evaluation).
-    pub fn nudge(
-        &self,
-        x: &[f64],
-        block: usize,
-        site: Option<usize>,
-        rng: &mut Rng,
-        out: &mut [f64],
-    ) -> bool {
-        self.problem.nudge(x, block, site, rng, out)
-    }
-
-    /// Where block `block`'s violations of `x` lie, as weights over its nudge sites
-    /// ([`Problem::hot_spots`]); counted as one evaluation when the problem assessed `x` for
-    /// it, `None` (nothing asked) when the budget is spent.
-    pub fn hot_spots(&mut self, x: &[f64], block: usize, out: &mut Vec<f64>) -> Option<()> {
-        if self.spent() {
-            return None;
-        }
-        if self.problem.hot_spots(x, block, out) {
-            self.count += 1;
-        }
-        Some(())
-    }
-
-    /// The problem's shifted copy of one block's path into another ([`Problem::shifted_copy`];
-    /// not an evaluation).
-    pub fn shifted_copy(
-        &self,
-        x: &[f64],
-        block: usize,
-        donor: usize,
-        rng: &mut Rng,
-        out: &mut [f64],
-    ) -> bool {
-        self.problem.shifted_copy(x, block, donor, rng, out)
-    }
-
     /// The bounds of the problem (borrowed from the problem, not from the evaluator, so an
     /// optimizer can hold them while it evaluates).
     #[must_use]
@@ -111,13 +75,6 @@ impl<'a> Evaluator<'a> {
     #[must_use]
     pub fn dimension(&self) -> usize {
         self.bounds.len()
-    }
-
-    /// The problem's block size ([`Problem::block_size`]), at least 1 and at most the
-    /// dimension.
-    #[must_use]
-    pub fn block_size(&self) -> usize {
-        self.problem.block_size().clamp(1, self.dimension().max(1))
     }
 
     /// Evaluates `x`, or returns `None` (without evaluating or counting) when the budget is
@@ -208,73 +165,6 @@ impl<'a> Evaluator<'a> {
             .collect_into_vec(out);
     }
 
-    /// [`Evaluator::evaluate_rows`] with each row's block shares of the violation
-    /// ([`Problem::evaluate_blocks`]) in `shares[i]`.
-    pub fn evaluate_rows_blocks(
-        &mut self,
-        rows: &[f64],
-        n: usize,
-        out: &mut Vec<Evaluation>,
-        shares: &mut Vec<Vec<f64>>,
-    ) {
-        self.rows_blocks(rows, n, |_| f64::INFINITY, out, shares);
-    }
-
-    /// [`Evaluator::evaluate_rows_blocks`] for rows that only need to beat, by Deb's rules,
-    /// a candidate whose violation is `cutoffs[i]` ([`Problem::evaluate_blocks_bounded`]): a
-    /// row the problem gives up on comes back as [`Evaluation::worst`], which no comparison
-    /// prefers, and its shares are unspecified. Each row counts as one evaluation either way,
-    /// so budgets stay what they were; only the time falls.
-    pub fn evaluate_rows_blocks_bounded(
-        &mut self,
-        rows: &[f64],
-        n: usize,
-        cutoffs: &[f64],
-        out: &mut Vec<Evaluation>,
-        shares: &mut Vec<Vec<f64>>,
-    ) {
-        assert!(cutoffs.len() >= n, "a cutoff per row");
-        self.rows_blocks(rows, n, |i| cutoffs[i], out, shares);
-    }
-
-    /// Rows with block shares, row i bounded by `cutoff(i)` (+inf: evaluated in full, which
-    /// a problem's bounded evaluation must then be).
-    fn rows_blocks(
-        &mut self,
-        rows: &[f64],
-        n: usize,
-        cutoff: impl Fn(usize) -> f64 + Sync,
-        out: &mut Vec<Evaluation>,
-        shares: &mut Vec<Vec<f64>>,
-    ) {
-        let problem = self.problem;
-        let dim = self.dimension();
-        let allowed = self.admit_rows(rows, n);
-        shares.resize_with(allowed.max(shares.len()), Vec::new);
-        out.clear();
-        let one = |x: &[f64], s: &mut Vec<f64>, c: f64| {
-            if c == f64::INFINITY {
-                normalised(problem.evaluate_blocks(x, s))
-            } else {
-                problem
-                    .evaluate_blocks_bounded(x, s, c)
-                    .map_or_else(Evaluation::worst, normalised)
-            }
-        };
-        if dim == 0 {
-            for (i, s) in shares.iter_mut().take(allowed).enumerate() {
-                out.push(one(&[], s, cutoff(i)));
-            }
-            return;
-        }
-        rows[..allowed * dim]
-            .par_chunks(dim)
-            .zip(shares[..allowed].par_iter_mut())
-            .enumerate()
-            .map(|(i, (x, s))| one(x, s, cutoff(i)))
-            .collect_into_vec(out);
-    }
-
     /// Counts as many of `n` rows as the budget allows and returns that number; marks the
     /// evaluator exhausted when it refused some.
     fn admit_rows(&mut self, rows: &[f64], n: usize) -> usize {
@@ -322,13 +212,6 @@ impl<'a> Evaluator<'a> {
         );
         self.count += 1;
         Some(())
-    }
-
-    /// [`Evaluator::evaluate`] with each block's share of the violation in `by_block`
-    /// ([`Problem::evaluate_blocks`]); counted the same.
-    pub fn evaluate_blocks(&mut self, x: &[f64], by_block: &mut Vec<f64>) -> Option<Evaluation> {
-        self.admit(x)?;
-        Some(normalised(self.problem.evaluate_blocks(x, by_block)))
     }
 
     /// Evaluations performed so far.
