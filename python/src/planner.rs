@@ -68,7 +68,7 @@ pub fn plan(
         seed: seed
             .map(|s| args::seed("seed", s))
             .transpose()?
-            .unwrap_or(world.spec.planning.seed),
+            .unwrap_or(world.spec().planning.seed),
     };
     let made = interrupt::interruptible(py, |cancel| {
         let mut req = req.clone();

@@ -155,7 +155,7 @@ impl Problem {
     /// The scenario's name.
     #[getter]
     fn name(&self) -> String {
-        self.world.spec.name.clone()
+        self.world.spec().name.clone()
     }
 
     /// The method whose encoding and initialisation the problem uses.
@@ -171,7 +171,7 @@ impl Problem {
 
     #[getter]
     fn profile(&self) -> &'static str {
-        self.world.spec.planning.profile.name()
+        self.world.spec().planning.profile.name()
     }
 
     #[getter]

@@ -28,7 +28,7 @@ pub fn load(scenario: &str, terrain: Option<PathBuf>, profile: Option<&str>) -> 
     let (world, notes) = build_world_noted(&loaded, terrain.as_deref()).map_err(to_py)?;
     let mut notes: Vec<String> = notes.into_iter().map(|n| format!("note: {n}")).collect();
     notes.extend(
-        unreachable_feasibility(&world.spec)
+        unreachable_feasibility(world.spec())
             .into_iter()
             .map(|u| format!("warning: {}: {u}", loaded.origin)),
     );

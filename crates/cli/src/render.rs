@@ -14,7 +14,12 @@ use swarmplan_core::world::World;
 #[must_use]
 pub fn assessment(world: &World, a: &Assessment) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "scenario {}: {} UAVs", world.spec.name, a.per_uav.len());
+    let _ = writeln!(
+        s,
+        "scenario {}: {} UAVs",
+        world.spec().name,
+        a.per_uav.len()
+    );
     let _ = writeln!(
         s,
         "{:>4} {:>9} {:>8} {:>9} {:>9} {:>8} {:>10} {:>8} {:>10}",
@@ -92,7 +97,7 @@ pub fn assessment(world: &World, a: &Assessment) -> String {
 /// or departure times differ; the search meets this as its hardest trap on the outside
 /// instances (docs/results.md, "Repairs, a doubled budget, ...").
 fn zone_edge_note(world: &World, violations: &[Violation]) -> Option<String> {
-    let timing = &world.spec.timing;
+    let timing = &world.spec().timing;
     let (r, d) = (timing.zone_radius, timing.separation);
     if r <= 0.0 {
         return None;
@@ -111,7 +116,7 @@ fn zone_edge_note(world: &World, violations: &[Violation]) -> Option<String> {
         let Some(p) = x.position else { continue };
         if x.uav < world.uav_count() && near(&p, world.start(x.uav)) {
             take_off += 1;
-        } else if near(&p, world.goal) {
+        } else if near(&p, world.goal_at(swarmplan_core::world::DEPARTURE)) {
             landing += 1;
         }
     }
@@ -145,7 +150,7 @@ fn zone_edge_note(world: &World, violations: &[Violation]) -> Option<String> {
 /// link even at the top of the altitude band, and how many of the outages begin there
 /// (where another path at the same place cannot help, only a relay).
 fn dead_zone_note(world: &World, violations: &[Violation]) -> Option<String> {
-    if world.spec.communication.requirement != CommRequirement::Relay {
+    if world.spec().communication.requirement != CommRequirement::Relay {
         return None; // contact is then not about the ground
     }
     let outages: Vec<&Violation> = violations
@@ -203,7 +208,10 @@ mod tests {
         c.interference = windows.to_vec();
         let world = build_world(&loaded, None).expect("world");
         let path = |i: usize| Path {
-            waypoints: vec![world.start(i), world.goal],
+            waypoints: vec![
+                world.start(i),
+                world.goal_at(swarmplan_core::world::DEPARTURE),
+            ],
         };
         let plan = Plan {
             pace: 1.0,
@@ -303,7 +311,10 @@ mod tests {
         // Both UAVs of tiny from the shared start, UAV 1 by a waypoint 5 deg off UAV 0's
         // straight line: closer than 10 m where they leave the 30 m zone.
         let world = build_world(&load_spec("tiny").expect("built-in"), None).expect("world");
-        let (start, goal) = (world.start(0), world.goal);
+        let (start, goal) = (
+            world.start(0),
+            world.goal_at(swarmplan_core::world::DEPARTURE),
+        );
         let bearing = (goal.y - start.y).atan2(goal.x - start.x) + 5f64.to_radians();
         let via = swarmplan_core::DVec3::new(
             start.x + 100.0 * bearing.cos(),

@@ -378,8 +378,8 @@ pub fn flown_polyline(
 /// may touch (among the first 64; later ones are checked chord by chord) and its chords are
 /// checked against those only, in the same order as chord by chord.
 pub fn check_arc_threats(world: &World, uav: usize, tp: &TimedPath, sink: &mut ViolationSink) {
-    let size = world.spec.uavs[uav].size;
-    let threats = &world.spec.threats;
+    let size = world.spec().uavs[uav].size;
+    let threats = &world.spec().threats;
     let mut s = 0;
     while s < tp.flown.len() {
         let seg = tp.flown[s];

@@ -123,7 +123,7 @@ pub fn run_with_uav_trace(
                 Some(row) if last_best.as_slice() == best_x => Arc::clone(row),
                 _ => {
                     let mut sink =
-                        crate::feasibility::ViolationSink::new(world.spec.planning.profile);
+                        crate::feasibility::ViolationSink::new(world.spec().planning.profile);
                     let plan = problem.decode(best_x);
                     let _ = crate::cost::assess_into(world, &plan, &mut scratch, &mut sink, false);
                     last_best.clear();

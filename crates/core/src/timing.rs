@@ -265,7 +265,7 @@ impl TimedPlan {
         self.flown_from.resize_with(n, FlownSource::default);
         let sources = self.paths.iter_mut().zip(&mut self.flown_from);
         for (u, ((tp, source), wp)) in sources.zip(&waypoints.paths).enumerate() {
-            let radius = world.spec.uavs[u].turn_radius;
+            let radius = world.spec().uavs[u].turn_radius;
             if source.is(radius, &wp.abs) {
                 continue;
             }
@@ -290,7 +290,7 @@ impl TimedPlan {
             if source.built {
                 continue;
             }
-            let radius = world.spec.uavs[u].turn_radius;
+            let radius = world.spec().uavs[u].turn_radius;
             crate::flight::flown_polyline(
                 &wp.abs,
                 radius,
@@ -320,8 +320,8 @@ impl TimedPlan {
     /// Speeds, departures, arrivals and the horizon from the paths' lengths and delays under
     /// the timing policy.
     fn schedule(&mut self, world: &World) {
-        let uavs = &world.spec.uavs;
-        match world.spec.timing.policy {
+        let uavs = &world.spec().uavs;
+        match world.spec().timing.policy {
             TimingPolicy::Cruise => {
                 for (tp, u) in self.paths.iter_mut().zip(uavs) {
                     tp.speed = u.cruise_speed * self.pace;

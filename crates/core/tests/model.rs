@@ -67,7 +67,11 @@ fn kinds(world: &World, plan: &Plan) -> Vec<ViolationKind> {
 #[test]
 fn straight_path_length_is_the_distance() {
     let w = World::new(spec(&[[100.0, 100.0, 150.0]]), flat()).unwrap();
-    let plan = Plan::straight(&[w.start(0)], w.goal, 5);
+    let plan = Plan::straight(
+        &[w.start(0)],
+        w.goal_at(swarmplan_core::world::DEPARTURE),
+        5,
+    );
     let a = assess(&w, &plan, true);
     let want = (800.0f64 * 800.0 * 2.0).sqrt();
     assert!((a.per_uav[0].raw[TermId::Length] - want).abs() < 1e-9);
@@ -89,7 +93,11 @@ fn a_segment_clear_of_a_cylinder_costs_nothing_and_one_through_it_violates() {
         r: 50.0,
     }];
     let w = World::new(s.clone(), flat()).unwrap();
-    let plan = Plan::straight(&[w.start(0)], w.goal, 5);
+    let plan = Plan::straight(
+        &[w.start(0)],
+        w.goal_at(swarmplan_core::world::DEPARTURE),
+        5,
+    );
     let a = assess(&w, &plan, true);
     assert_eq!(a.per_uav[0].raw[TermId::Threat], 0.0);
     assert!(!kinds(&w, &plan).contains(&ViolationKind::Threat));
@@ -219,7 +227,11 @@ fn speeds_out_of_range_count_in_safety_and_violate() {
     s.uavs[0].cruise_speed = 40.0;
     s.uavs[0].payload_kg = 2.0;
     let w = World::new(s, flat()).unwrap();
-    let plan = Plan::straight(&[w.start(0)], w.goal, 3);
+    let plan = Plan::straight(
+        &[w.start(0)],
+        w.goal_at(swarmplan_core::world::DEPARTURE),
+        3,
+    );
     let a = assess(&w, &plan, true);
     // 4 segments too fast + 1 payload indicator.
     assert_eq!(a.per_uav[0].raw[TermId::Safety], 5.0);
@@ -232,7 +244,11 @@ fn a_small_battery_violates_energy() {
     let mut s = spec(&[[100.0, 100.0, 150.0]]);
     s.uavs[0].battery_wh = 1.0;
     let w = World::new(s, flat()).unwrap();
-    let plan = Plan::straight(&[w.start(0)], w.goal, 3);
+    let plan = Plan::straight(
+        &[w.start(0)],
+        w.goal_at(swarmplan_core::world::DEPARTURE),
+        3,
+    );
     let v = check(&w, &plan);
     assert!(v.iter().any(|v| v.kind == ViolationKind::Energy), "{v:?}");
     // The physical energy is P(15 m/s) L / 15 with the payload, at least 9 J/m.
@@ -342,7 +358,11 @@ fn flying_out_of_range_costs_and_violates_outage() {
         flat(),
     )
     .unwrap();
-    let plan = Plan::straight(&[w.start(0)], w.goal, 3);
+    let plan = Plan::straight(
+        &[w.start(0)],
+        w.goal_at(swarmplan_core::world::DEPARTURE),
+        3,
+    );
     let a = assess(&w, &plan, true);
     // Out of both 300 m disks for the middle of the 800 m trip (about 200 m, 13 s at 15 m/s).
     assert!(a.per_uav[0].outage_s >= 10.0, "{}", a.per_uav[0].outage_s);
@@ -517,7 +537,11 @@ fn a_flight_longer_than_the_swept_horizon_is_a_communication_violation_not_a_han
     assert_eq!(comm.len(), 1, "{v:?}");
     assert!(comm[0].amount > 1e40, "{:?}", comm[0]);
     // A mission of ordinary length has no such violation.
-    let straight = Plan::straight(&[w.start(0)], w.goal, 5);
+    let straight = Plan::straight(
+        &[w.start(0)],
+        w.goal_at(swarmplan_core::world::DEPARTURE),
+        5,
+    );
     assert!(!check(&w, &straight)
         .iter()
         .any(|v| v.detail.contains("assessed over the first")));
@@ -553,7 +577,7 @@ fn a_free_pace_is_one_more_variable_per_uav_and_the_plan_flies_it() {
     let mut free_spec = spec(&starts);
     free_spec.timing.pace = [0.5, 1.5];
     let free = World::new(free_spec, flat()).unwrap();
-    let n = fixed.spec.planning.waypoints;
+    let n = fixed.spec().planning.waypoints;
     for kind in [EncodingKind::Spherical, EncodingKind::Cartesian] {
         let a = PlanningProblem::new(&fixed, kind, InitKind::Line);
         let b = PlanningProblem::new(&free, kind, InitKind::Line);
@@ -640,8 +664,8 @@ fn arc_threat_check_finds_what_a_chord_by_chord_check_finds() {
         for (c, seg) in tp.flown.iter().enumerate().filter(|(_, f)| f.arc) {
             chords += 1;
             let (a, b) = (tp.abs[c], tp.abs[c + 1]);
-            for t in &world.spec.threats {
-                let hard = t.r + world.spec.uavs[0].size;
+            for t in &world.spec().threats {
+                let hard = t.r + world.spec().uavs[0].size;
                 if segment_box_misses(t, a, b, hard) {
                     continue;
                 }
@@ -728,7 +752,11 @@ fn hovering_before_departure_costs_hover_power() {
     let flight = 800.0 * 2f64.sqrt() / 15.0;
     let hover_s = 0.25 / 0.75 * flight;
     assert!((later.arrival_s - (flight + hover_s)).abs() < 1e-9);
-    let hover_w = w.spec.energy.model.power(0.0, w.spec.uavs[0].payload_kg);
+    let hover_w = w
+        .spec()
+        .energy
+        .model
+        .power(0.0, w.spec().uavs[0].payload_kg);
     assert!(hover_w > 100.0, "{hover_w}");
     let extra = later.energy_j - now.energy_j;
     assert!((extra - hover_w * hover_s).abs() < 1e-6 * extra, "{extra}");
@@ -908,7 +936,11 @@ fn hot_spots_weigh_the_free_waypoints_next_to_a_uavs_violations() {
     let w = World::new(s.clone(), flat()).unwrap();
     let p = PlanningProblem::new(&w, EncodingKind::Cartesian, InitKind::Line);
     let n = p.block_size() / 3;
-    let plan = Plan::straight(&[w.start(0), w.start(1)], w.goal, n);
+    let plan = Plan::straight(
+        &[w.start(0), w.start(1)],
+        w.goal_at(swarmplan_core::world::DEPARTURE),
+        n,
+    );
     // A small threat on UAV 1's free waypoint 3, far from UAV 0's line.
     let at = plan.uavs[1].waypoints[3];
     s.threats = vec![Threat {
@@ -946,7 +978,11 @@ fn with_delays_free_a_waiting_uavs_energy_weighs_its_delay_and_a_nudge_there_mov
     let n = s.planning.waypoints;
     let w = World::new(s, flat()).unwrap();
     let p = PlanningProblem::new(&w, EncodingKind::Cartesian, InitKind::Line);
-    let mut plan = Plan::straight(&[w.start(0), w.start(1)], w.goal, n);
+    let mut plan = Plan::straight(
+        &[w.start(0), w.start(1)],
+        w.goal_at(swarmplan_core::world::DEPARTURE),
+        n,
+    );
     plan.delays = vec![0.0, 0.1];
     let x = p.encode(&plan);
     assert!(kinds(&w, &p.decode(&x)).contains(&ViolationKind::Energy));
@@ -991,14 +1027,14 @@ fn a_nudge_at_a_shared_zone_puts_the_end_waypoint_at_a_clear_bearing_near_it() {
         let n = p.block_size() / 3;
         let plan = Plan::straight(
             &(0..starts.len()).map(|i| w.start(i)).collect::<Vec<_>>(),
-            w.goal,
+            w.goal_at(swarmplan_core::world::DEPARTURE),
             n,
         );
         let x = p.encode(&plan);
         let (k, site, centre) = if at_start {
             (1, 0, w.start(1))
         } else {
-            (n, n - 1, w.goal)
+            (n, n - 1, w.goal_at(swarmplan_core::world::DEPARTURE))
         };
         let before = plan.uavs[1].waypoints[k];
         let mut rng = swarmplan_core::rng::rng_from_seed(3);
@@ -1119,7 +1155,7 @@ fn the_ground_coverage_map_is_dead_behind_a_ridge_and_beyond_the_range() {
     // The cells agree with the single-point test at their centres.
     for ([x0, y0, x1, y1], linked) in map.cells() {
         let (x, y) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
-        let p = DVec3::new(x, y, w.terrain.height(x, y) + 150.0);
+        let p = DVec3::new(x, y, w.terrain().height(x, y) + 150.0);
         assert_eq!(linked, direct_ground_link(&w, p), "cell at ({x}, {y})");
     }
     let dead = map.dead_share();

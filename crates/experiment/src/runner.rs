@@ -194,8 +194,8 @@ enum Stop {
 pub fn world_fingerprint(world: &World) -> String {
     use std::hash::Hasher as _;
     let mut h = fnv::FnvHasher::default();
-    h.write(swarmplan_io::scenario::to_toml(&world.spec).as_bytes());
-    h.write(world.terrain.fingerprint().as_bytes());
+    h.write(swarmplan_io::scenario::to_toml(world.spec()).as_bytes());
+    h.write(world.terrain().fingerprint().as_bytes());
     format!("{:016x}", h.finish())
 }
 

@@ -66,13 +66,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let n = world.uav_count();
         println!(
             "== {case}: R0 {} m, {} interference window(s)",
-            world.spec.communication.range,
-            world.spec.communication.interference.len()
+            world.spec().communication.range,
+            world.spec().communication.interference.len()
         );
 
         let straight = Plan::straight(
             &(0..n).map(|i| world.start(i)).collect::<Vec<_>>(),
-            world.goal,
+            world.goal_at(swarmplan_core::world::DEPARTURE),
             10,
         );
         let a = assess(&world, &straight, true);

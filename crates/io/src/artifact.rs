@@ -177,8 +177,8 @@ impl RunArtifact {
     ) -> Self {
         Self {
             version: RUN_ARTIFACT_VERSION,
-            scenario: world.spec.name.clone(),
-            terrain_fingerprint: world.terrain.fingerprint(),
+            scenario: world.spec().name.clone(),
+            terrain_fingerprint: world.terrain().fingerprint(),
             method: result.method,
             optimizer: result.method.optimizer,
             encoding: result.method.encoding,

@@ -18,6 +18,7 @@
 
 use std::collections::BTreeMap;
 use std::path::Path;
+use swarmplan_core::world::DEPARTURE;
 
 use glam::DVec3;
 use serde_json::Value;
@@ -354,16 +355,16 @@ fn to_plan(
     if paths.len() != n {
         return Err(invalid(format!(
             "scenario `{}` has {n} UAVs, the file has {}",
-            world.spec.name,
+            world.spec().name,
             paths.len()
         )));
     }
     let pace = pace.unwrap_or(1.0);
-    let [lo, hi] = world.spec.timing.pace;
-    if !(pace.is_finite() && pace > 0.0 && world.spec.timing.allows_pace(pace)) {
+    let [lo, hi] = world.spec().timing.pace;
+    if !(pace.is_finite() && pace > 0.0 && world.spec().timing.allows_pace(pace)) {
         return Err(invalid(format!(
             "pace {pace}: scenario `{}` allows timing.pace [{lo}, {hi}]",
-            world.spec.name
+            world.spec().name
         )));
     }
     let mut plan = Plan {
@@ -387,11 +388,11 @@ fn to_plan(
                 })?;
             let agl = f
                 .agl
-                .unwrap_or_else(|| p.z - world.terrain.height(p.x, p.y));
+                .unwrap_or_else(|| p.z - world.terrain().height(p.x, p.y));
             waypoints.push(DVec3::new(p.x, p.y, agl));
         }
         let last = waypoints.len() - 1;
-        for (k, want) in [(0, world.start(i)), (last, world.goal)] {
+        for (k, want) in [(0, world.start(i)), (last, world.goal_at(DEPARTURE))] {
             if waypoints[k].distance(want) <= SNAP_M {
                 waypoints[k] = want;
             }
@@ -404,10 +405,10 @@ fn to_plan(
         })?;
         plan.uavs.push(UavPath { waypoints });
         let delay = delays.get(&i).copied().unwrap_or(0.0);
-        if !(delay.is_finite() && world.spec.timing.allows_delay(delay)) {
+        if !(delay.is_finite() && world.spec().timing.allows_delay(delay)) {
             return Err(invalid(format!(
                 "uav {i}: departure delay {delay}: scenario `{}` allows timing.max_delay {} (a share of the arrival time in [0, max_delay])",
-                world.spec.name, world.spec.timing.max_delay
+                world.spec().name, world.spec().timing.max_delay
             )));
         }
         plan.delays.push(delay);

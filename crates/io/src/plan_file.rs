@@ -11,6 +11,7 @@
 //! these fields are accepted as they are.
 
 use std::path::Path;
+use swarmplan_core::world::DEPARTURE;
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -175,14 +176,14 @@ pub fn parse_plan(
             recorded: recorded.to_string(),
             current,
         };
-        if let Some(s) = file.scenario.as_deref().filter(|s| *s != world.spec.name) {
+        if let Some(s) = file.scenario.as_deref().filter(|s| *s != world.spec().name) {
             return Err(mismatch(
                 "scenario",
                 &format!("scenario `{s}`"),
-                format!("scenario `{}`", world.spec.name),
+                format!("scenario `{}`", world.spec().name),
             ));
         }
-        let current = world.terrain.fingerprint();
+        let current = world.terrain().fingerprint();
         if let Some(t) = file
             .terrain_fingerprint
             .as_deref()
@@ -191,7 +192,7 @@ pub fn parse_plan(
             return Err(mismatch(
                 "terrain",
                 &format!("terrain {t}"),
-                format!("terrain {current} ({})", world.spec.terrain.source),
+                format!("terrain {current} ({})", world.spec().terrain.source),
             ));
         }
     }
@@ -206,7 +207,7 @@ pub fn parse_plan(
             "uavs".into(),
             format!(
                 "scenario `{}` has {n} UAVs, the plan has {}",
-                world.spec.name,
+                world.spec().name,
                 file.uavs.len()
             ),
         ));
@@ -220,13 +221,16 @@ pub fn parse_plan(
             ),
         ));
     }
-    let [lo, hi] = world.spec.timing.pace;
-    if provenance == Provenance::MustMatch && !world.spec.timing.allows_pace(file.pace) {
+    let [lo, hi] = world.spec().timing.pace;
+    if provenance == Provenance::MustMatch && !world.spec().timing.allows_pace(file.pace) {
         return Err(PlanFileError::Provenance {
             path: origin.to_string(),
             what: "pace",
             recorded: format!("a pace of {}", file.pace),
-            current: format!("scenario `{}`'s timing.pace [{lo}, {hi}]", world.spec.name),
+            current: format!(
+                "scenario `{}`'s timing.pace [{lo}, {hi}]",
+                world.spec().name
+            ),
         });
     }
     let mut plan = Plan {
@@ -255,7 +259,7 @@ pub fn parse_plan(
         })?;
         let ends = [
             (0, world.start(i), "start"),
-            (u.waypoints.len() - 1, world.goal, "goal"),
+            (u.waypoints.len() - 1, world.goal_at(DEPARTURE), "goal"),
         ];
         for (k, want, what) in ends {
             let got = DVec3::from_array(u.waypoints[k]);
@@ -270,7 +274,7 @@ pub fn parse_plan(
             }
         }
         plan.uavs.push(UavPath { waypoints });
-        let timing = &world.spec.timing;
+        let timing = &world.spec().timing;
         if !(0.0..=MAX_DELAY_LIMIT).contains(&u.delay) {
             return Err(invalid(
                 format!("uavs[{i}].delay"),
@@ -287,7 +291,8 @@ pub fn parse_plan(
                 recorded: format!("uavs[{i}].delay {}", u.delay),
                 current: format!(
                     "scenario `{}`'s timing.max_delay {}",
-                    world.spec.name, timing.max_delay
+                    world.spec().name,
+                    timing.max_delay
                 ),
             });
         }
@@ -328,7 +333,7 @@ pub fn check_waypoints(
             format!("expected finite numbers, got {:?}", waypoints[k].to_array()),
         ));
     }
-    let (bx, by) = (world.spec.map.x, world.spec.map.y);
+    let (bx, by) = (world.spec().map.x, world.spec().map.y);
     let slack = 1e-6 * (bx[1] - bx[0]).max(by[1] - by[0]);
     for (k, w) in waypoints.iter().enumerate() {
         let inside = w.x >= bx[0] - slack
@@ -346,7 +351,7 @@ pub fn check_waypoints(
         }
     }
     let length: f64 = waypoints.windows(2).map(|s| s[0].distance(s[1])).sum();
-    let v_max = world.spec.uavs[uav].speed[1];
+    let v_max = world.spec().uavs[uav].speed[1];
     if length / v_max > MAX_SWEPT_S {
         return Err(InadmissiblePath {
             waypoint: None,
@@ -382,8 +387,8 @@ pub fn plan_file(world: &World, plan: &Plan) -> PlanFile {
         })
         .collect();
     PlanFile {
-        scenario: Some(world.spec.name.clone()),
-        terrain_fingerprint: Some(world.terrain.fingerprint()),
+        scenario: Some(world.spec().name.clone()),
+        terrain_fingerprint: Some(world.terrain().fingerprint()),
         pace: plan.pace,
         uavs,
     }

@@ -191,7 +191,7 @@ fn qgc_plan_files_follow_the_documented_format_and_the_plan() {
             assert_eq!(p[1], pt.acceptance_m);
             let abs = |k: usize| {
                 let w = path.points[k].local;
-                glam::DVec3::new(w.x, w.y, world.terrain.height(w.x, w.y) + w.z)
+                glam::DVec3::new(w.x, w.y, world.terrain().height(w.x, w.y) + w.z)
             };
             // A repeated waypoint turns between the places before and after it.
             let here = abs(k);
@@ -206,7 +206,7 @@ fn qgc_plan_files_follow_the_documented_format_and_the_plan() {
             };
             assert!((pt.acceptance_m - want).abs() < 1e-6 * want.max(1.0), "{k}");
             // Altitude AMSL = terrain + AGL + the origin's altitude offset.
-            let want = world.terrain.height(pt.local.x, pt.local.y) + pt.local.z + ORIGIN.alt_m;
+            let want = world.terrain().height(pt.local.x, pt.local.y) + pt.local.z + ORIGIN.alt_m;
             assert!((pt.geo.alt_m - want).abs() < 1e-9);
         }
         assert!(doc["swarmplan"]["altitudeReference"]
@@ -215,7 +215,7 @@ fn qgc_plan_files_follow_the_documented_format_and_the_plan() {
             .contains("above mean sea level"));
         assert_eq!(
             doc["geoFence"]["circles"].as_array().unwrap().len(),
-            world.spec.threats.len()
+            world.spec().threats.len()
         );
     }
 }
@@ -363,7 +363,7 @@ fn kml_and_csv_state_their_altitude_reference() {
             .count(),
         2
     );
-    assert_eq!(kml.matches("<Polygon>").count(), world.spec.threats.len());
+    assert_eq!(kml.matches("<Polygon>").count(), world.spec().threats.len());
     assert!(kml.contains("above mean sea level"));
     assert_eq!(
         kml.matches("<Placemark>").count(),
@@ -418,7 +418,10 @@ fn export_then_reimport_gives_the_same_cost() {
         // Ends are snapped exactly onto the scenario's start and goal.
         for (i, p) in again.uavs.iter().enumerate() {
             assert_eq!(p.waypoints[0], world.start(i));
-            assert_eq!(*p.waypoints.last().unwrap(), world.goal);
+            assert_eq!(
+                *p.waypoints.last().unwrap(),
+                world.goal_at(swarmplan_core::world::DEPARTURE)
+            );
         }
     }
 }
@@ -643,7 +646,7 @@ fn imported_missions_outside_the_model_are_refused_naming_the_waypoint() {
         &(0..world.uav_count())
             .map(|i| world.start(i))
             .collect::<Vec<_>>(),
-        world.goal,
+        world.goal_at(swarmplan_core::world::DEPARTURE),
         4,
     );
     let dir = tempfile::tempdir().unwrap();

@@ -603,7 +603,7 @@ fn scenario_new_places_start_and_goal_and_reads_back() {
     let (frame, source) = resolve_frame(&loaded, origin, None, None).unwrap();
     assert_eq!(source, FrameSource::Dem);
     let starts: Vec<DVec3> = (0..3).map(|i| world.start(i)).collect();
-    let plan = Plan::straight(&starts, world.goal, 4);
+    let plan = Plan::straight(&starts, world.goal_at(swarmplan_core::world::DEPARTURE), 4);
     let out = dir.path().join("out");
     let files = export_plan(&world, &plan, &frame, ExportFormat::Csv, &out).unwrap();
     let again = read_exported_plan(&files[0], &world, &frame).unwrap();

@@ -61,7 +61,7 @@ type Outcome = (u64, u64, Vec<UavReport>, Vec<Violation>);
 fn outcome(problem: &PlanningProblem<'_>, x: &[f64], scratch: &mut Scratch) -> Outcome {
     let world = problem.world();
     let plan = problem.decode(x);
-    let mut sink = ViolationSink::collecting(world.spec.planning.profile);
+    let mut sink = ViolationSink::collecting(world.spec().planning.profile);
     let (total, violation) = assess_into(world, &plan, scratch, &mut sink, false);
     (
         total.to_bits(),
@@ -80,7 +80,7 @@ fn summed(problem: &PlanningProblem<'_>, x: &[f64], scratch: &mut Scratch) -> Su
     let world = problem.world();
     let plan = problem.decode(x);
     let n = plan.uavs.len();
-    let mut sink = ViolationSink::new(world.spec.planning.profile).sharing(n, Vec::new());
+    let mut sink = ViolationSink::new(world.spec().planning.profile).sharing(n, Vec::new());
     let (total, violation) = assess_into(world, &plan, scratch, &mut sink, false);
     let shares = sink.by_uav.unwrap_or_default();
     (
@@ -458,11 +458,11 @@ proptest! {
 #[test]
 fn buffers_that_served_one_world_serve_another_afresh() {
     let a = &worlds()[0];
-    let mut spec = a.spec.clone();
+    let mut spec = a.spec().clone();
     for t in &mut spec.threats {
         t.r *= 1.5;
     }
-    let b = World::new(spec, a.terrain.clone()).unwrap();
+    let b = World::new(spec, a.terrain().clone()).unwrap();
     let (pa, pb) = (
         PlanningProblem::new(a, EncodingKind::Spherical, InitKind::Line),
         PlanningProblem::new(&b, EncodingKind::Spherical, InitKind::Line),

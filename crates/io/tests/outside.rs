@@ -41,9 +41,9 @@ fn outside_instances_load_as_scenarios() {
     // The rugged terrain of the instance, not the procedural one.
     let world = build_world(&loaded, None).unwrap();
     assert!(
-        world.terrain.max_height() > 500.0,
+        world.terrain().max_height() > 500.0,
         "max height {}",
-        world.terrain.max_height()
+        world.terrain().max_height()
     );
     // The TOML it prints reads back to the same scenario; other fleet sizes by name.
     let again = swarmplan_io::scenario::parse_spec(&loaded.text, "again").unwrap();
@@ -81,7 +81,7 @@ fn outside_instances_leave_the_pace_free_and_plan_files_keep_it() {
     let starts: Vec<_> = (0..world.uav_count()).map(|i| world.start(i)).collect();
     let plan = Plan {
         pace: 1.4,
-        ..Plan::straight(&starts, world.goal, 3)
+        ..Plan::straight(&starts, world.goal_at(swarmplan_core::world::DEPARTURE), 3)
     };
     let text = serde_json::to_string(&plan_file(&world, &plan)).unwrap();
     assert!(text.contains("\"pace\":1.4"), "{text}");

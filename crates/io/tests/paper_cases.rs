@@ -13,7 +13,11 @@ fn the_straight_plan_hits_threats_and_loses_contact_in_both_cases() {
     for case in ["paper-case1", "paper-case2"] {
         let world = build_world(&load_spec(case).unwrap(), None).unwrap();
         let starts: Vec<_> = (0..world.uav_count()).map(|i| world.start(i)).collect();
-        let plan = Plan::straight(&starts, world.goal, world.spec.planning.waypoints);
+        let plan = Plan::straight(
+            &starts,
+            world.goal_at(swarmplan_core::world::DEPARTURE),
+            world.spec().planning.waypoints,
+        );
         let v = check(&world, &plan);
         for kind in [ViolationKind::Threat, ViolationKind::Comm] {
             assert!(

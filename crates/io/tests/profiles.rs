@@ -24,7 +24,11 @@ fn the_paper_profile_counts_only_its_hard_kinds_and_costs_the_same() {
         let starts: Vec<_> = (0..strict_world.uav_count())
             .map(|i| strict_world.start(i))
             .collect();
-        let plan = Plan::straight(&starts, strict_world.goal, 10);
+        let plan = Plan::straight(
+            &starts,
+            strict_world.goal_at(swarmplan_core::world::DEPARTURE),
+            10,
+        );
         let strict = assess(&strict_world, &plan, true);
         let paper = assess(&paper_world, &plan, true);
         // The flown path (radius 50 m) is another trajectory: another cost.

@@ -43,11 +43,11 @@ proptest! {
         let enc = build(kind, w);
         let x = into_bounds(&u, enc.as_ref());
         let plan = enc.decode(&x);
-        let m = &w.spec.map;
+        let m = &w.spec().map;
         prop_assert_eq!(plan.uavs.len(), 5);
         for (i, p) in plan.uavs.iter().enumerate() {
             prop_assert_eq!(p.waypoints[0], w.start(i));
-            prop_assert_eq!(*p.waypoints.last().unwrap(), w.goal);
+            prop_assert_eq!(*p.waypoints.last().unwrap(), w.goal_at(swarmplan_core::world::DEPARTURE));
             for q in &p.waypoints[1..p.waypoints.len() - 1] {
                 prop_assert!(q.x >= m.x[0] && q.x <= m.x[1], "x {}", q.x);
                 prop_assert!(q.y >= m.y[0] && q.y <= m.y[1], "y {}", q.y);

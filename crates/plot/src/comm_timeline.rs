@@ -78,7 +78,7 @@ impl CommTimeline<'_> {
         labels: bool,
         s: Scale,
     ) -> DrawResult<(), DB> {
-        for (k, w) in self.world.channel.interference().iter().enumerate() {
+        for (k, w) in self.world.channel().interference().iter().enumerate() {
             let (a, b) = (w.time[0].max(0.0), w.time[1].min(self.t_end()));
             if a >= b {
                 continue;
@@ -172,7 +172,7 @@ impl CommTimeline<'_> {
                 )))?;
             }
             // Under the row: while the UAV is inside an active interference disk.
-            let ch = &self.world.channel;
+            let ch = self.world.channel();
             let inside: Vec<bool> = self
                 .trace
                 .times
@@ -205,7 +205,7 @@ impl CommTimeline<'_> {
         area: &DrawingArea<DB, Shift>,
         s: Scale,
     ) -> DrawResult<(), DB> {
-        let ch = &self.world.channel;
+        let ch = self.world.channel();
         let range: Vec<(f64, f64)> = self
             .trace
             .times

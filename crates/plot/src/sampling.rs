@@ -32,7 +32,7 @@ impl ContactTrace {
     pub(crate) fn new(world: &World, plan: &Plan) -> Self {
         // Where the UAVs are when: what is flown, as the assessment sees it.
         let timed = TimedPlan::flown(world, plan);
-        let dt = world.channel.step();
+        let dt = world.channel().step();
         let steps = if timed.horizon.is_finite() && dt > 0.0 {
             (timed.horizon / dt).ceil() as usize
         } else {

@@ -66,7 +66,7 @@ struct TopView<'a> {
 
 impl<'a> TopView<'a> {
     fn new(world: &'a World, plan: &'a Plan, title: &'a str) -> Self {
-        let m = &world.spec.map;
+        let m = &world.spec().map;
         let (mut x, mut y) = ((m.x[0], m.x[1]), (m.y[0], m.y[1]));
         let points = plan
             .uavs
@@ -74,7 +74,7 @@ impl<'a> TopView<'a> {
             .flat_map(|p| p.waypoints.iter().map(|w| (w.x, w.y)))
             .chain(
                 world
-                    .ground_nodes
+                    .ground_nodes_at(swarmplan_core::world::DEPARTURE)
                     .iter()
                     .map(|g| (g.position.x, g.position.y)),
             );
@@ -82,7 +82,7 @@ impl<'a> TopView<'a> {
             x = (x.0.min(px), x.1.max(px));
             y = (y.0.min(py), y.1.max(py));
         }
-        let t = &world.terrain;
+        let t = world.terrain();
         let h = (t.min_height(), t.max_height());
         let step = interval(h.0, h.1);
         let cells = |a: f64, b: f64| (((b - a) / 4.0).ceil() as usize + 1).clamp(2, 260);
@@ -95,7 +95,7 @@ impl<'a> TopView<'a> {
             .collect();
         let trace = ContactTrace::new(world, plan);
         // Under `relay` contact means a way to the ground; under `neighbour` it does not.
-        let relay = world.spec.communication.requirement == CommRequirement::Relay;
+        let relay = world.spec().communication.requirement == CommRequirement::Relay;
         let out = relay && (0..trace.uav_count()).any(|i| trace.seconds(i, Contact::Out) > 0.0);
         Self {
             world,
@@ -114,7 +114,7 @@ impl<'a> TopView<'a> {
 
     /// RGB pixels of the shaded relief for a plotting area of `w` x `h` pixels.
     fn relief(&self, w: usize, h: usize) -> Vec<u8> {
-        let t = &self.world.terrain;
+        let t = self.world.terrain();
         let (dx, dy) = (self.x.1 - self.x.0, self.y.1 - self.y.0);
         let heights: Vec<f64> = (0..h)
             .flat_map(|j| {
@@ -194,14 +194,14 @@ impl<'a> TopView<'a> {
             style::THREAT_DARK,
             s.px(2.0),
         ));
-        if !self.world.channel.interference().is_empty() {
+        if !self.world.channel().interference().is_empty() {
             e.push(Entry::dashed(
                 "interference window",
                 style::INTERFERENCE,
                 s.px(2.0),
             ));
         }
-        for g in &self.world.ground_nodes {
+        for g in self.world.ground_nodes_at(swarmplan_core::world::DEPARTURE) {
             e.push(Entry::marker(g.name.clone(), node_shape(&g.name), BLACK));
         }
         e.push(Entry::line(
@@ -341,7 +341,7 @@ impl Figure for TopView<'_> {
 
         let span = (self.x.1 - self.x.0).max(self.y.1 - self.y.0);
         let (dash, gap) = (span / 120.0, span / 200.0);
-        for win in self.world.channel.interference() {
+        for win in self.world.channel().interference() {
             let ring = style::circle(win.center[0], win.center[1], win.radius, 120);
             let ring = style::within_view(ring, self.x, self.y);
             chart.draw_series(
@@ -351,9 +351,9 @@ impl Figure for TopView<'_> {
             )?;
         }
 
-        let size = |i: usize| self.world.spec.uavs.get(i).map_or(1.0, |u| u.size);
+        let size = |i: usize| self.world.spec().uavs.get(i).map_or(1.0, |u| u.size);
         let drone = (0..self.world.uav_count()).map(size).fold(0.0, f64::max);
-        for th in &self.world.spec.threats {
+        for th in &self.world.spec().threats {
             let hard = style::circle(th.x, th.y, th.r + drone, 96);
             let hard = style::within_view(hard, self.x, self.y);
             let band = style::circle(th.x, th.y, th.r + (1.0 + DANGER_SIZES) * drone, 96);
@@ -403,7 +403,7 @@ impl Figure for TopView<'_> {
         let (bx, by) = chart.plotting_area().get_pixel_range();
         let mut labels = Labels::new([bx.start, by.start, bx.end, by.end]);
         let node_text: TextStyle = (FONT, s.font(18.0)).into_font().color(&BLACK);
-        for g in &self.world.ground_nodes {
+        for g in self.world.ground_nodes_at(swarmplan_core::world::DEPARTURE) {
             let at = chart.backend_coord(&(g.position.x, g.position.y));
             draw_shape(root, at, s.off(9.0), node_shape(&g.name), BLACK, s)?;
             let (w, h) = root.estimate_text_size(&g.name, &node_text)?;
@@ -509,7 +509,7 @@ impl Figure for TopView<'_> {
         }
 
         // Interference windows: a label above each disk, on a white ground.
-        for (k, win) in self.world.channel.interference().iter().enumerate() {
+        for (k, win) in self.world.channel().interference().iter().enumerate() {
             let label = format!(
                 "W{}: {}-{} s, {} dB",
                 k + 1,

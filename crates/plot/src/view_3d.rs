@@ -56,11 +56,11 @@ struct View3d<'a> {
 
 impl<'a> View3d<'a> {
     fn new(world: &'a World, plan: &'a Plan, title: &'a str) -> Self {
-        let m = &world.spec.map;
+        let m = &world.spec().map;
         let (mut x, mut y) = ((m.x[0], m.x[1]), (m.y[0], m.y[1]));
         let timed = TimedPlan::new(world, plan);
         let flown = TimedPlan::flown(world, plan);
-        let t = &world.terrain;
+        let t = world.terrain();
         let mut alt = (t.min_height(), t.max_height());
         for p in timed.paths.iter().flat_map(|p| p.abs.iter()) {
             if p.is_finite() {
@@ -69,7 +69,7 @@ impl<'a> View3d<'a> {
                 alt = (alt.0.min(p.z), alt.1.max(p.z));
             }
         }
-        for th in &world.spec.threats {
+        for th in &world.spec().threats {
             alt.1 = alt.1.max(t.height(th.x, th.y) + th.z);
         }
         let top = alt.1 + 0.08 * (alt.1 - alt.0).max(1.0);
@@ -92,7 +92,7 @@ impl<'a> View3d<'a> {
 
     /// Terrain facets: corners (x, altitude, y) and the facet's colour.
     fn facets(&self) -> Vec<(Quad, RGBColor)> {
-        let t = &self.world.terrain;
+        let t = self.world.terrain();
         let (dx, dy) = self.dims();
         let cell = dx.max(dy) / MESH_CELLS as f64;
         let nx = ((dx / cell).ceil() as usize).max(1);
@@ -155,7 +155,7 @@ impl<'a> View3d<'a> {
             style::THREAT,
             s.px(1.5),
         ));
-        for g in &self.world.ground_nodes {
+        for g in self.world.ground_nodes_at(swarmplan_core::world::DEPARTURE) {
             let shape = if g.name == "GCS" {
                 Shape::Triangle
             } else {
@@ -298,7 +298,7 @@ impl Figure for View3d<'_> {
             chart.draw_series(std::iter::once(PathElement::new(ring, edge)))?;
         }
 
-        let t = &self.world.terrain;
+        let t = self.world.terrain();
         // Path shadows, draped on the ground.
         for (i, p) in self.flown.paths.iter().enumerate() {
             let c = style::uav_colour(i);
@@ -318,9 +318,9 @@ impl Figure for View3d<'_> {
             )))?;
         }
 
-        let size_of = |i: usize| self.world.spec.uavs.get(i).map_or(1.0, |u| u.size);
+        let size_of = |i: usize| self.world.spec().uavs.get(i).map_or(1.0, |u| u.size);
         let drone = (0..self.world.uav_count()).map(size_of).fold(0.0, f64::max);
-        for th in &self.world.spec.threats {
+        for th in &self.world.spec().threats {
             let r = th.r + drone;
             let ground = t.height(th.x, th.y);
             let drawn = ground + th.z;
@@ -389,7 +389,7 @@ impl Figure for View3d<'_> {
             .into_font()
             .color(&BLACK)
             .pos(Pos::new(HPos::Left, VPos::Bottom));
-        for g in &self.world.ground_nodes {
+        for g in self.world.ground_nodes_at(swarmplan_core::world::DEPARTURE) {
             let p = (g.position.x, g.position.z, g.position.y);
             let at = chart.as_coord_spec().translate(&p);
             let shape = if g.name == "GCS" {

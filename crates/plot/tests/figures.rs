@@ -171,7 +171,7 @@ fn check_equal_aspect(svg: &Path, world: &World) {
             .expect("a number")
     };
     let (w, h) = (attr("width"), attr("height"));
-    let m = &world.spec.map;
+    let m = &world.spec().map;
     let aspect = (m.x[1] - m.x[0]) / (m.y[1] - m.y[0]);
     // One pixel of rounding on a few hundred.
     assert!(
@@ -484,7 +484,7 @@ fn a_straight_plan_and_nested_folders_work() {
     let dir = tempfile::tempdir().unwrap();
     let world = tiny();
     let starts: Vec<_> = (0..world.uav_count()).map(|i| world.start(i)).collect();
-    let plan = Plan::straight(&starts, world.goal, 4);
+    let plan = Plan::straight(&starts, world.goal_at(swarmplan_core::world::DEPARTURE), 4);
     let w = top_view(&world, &plan, "straight", dir.path().join("a/b/top.v1")).unwrap();
     assert!(w.png.ends_with("top.v1.png") && w.svg.ends_with("top.v1.svg"));
     check(&w, Target::DEFAULT_SIZE);
@@ -597,7 +597,7 @@ fn where_no_ground_link_exists_is_hatched_when_a_uav_is_out_of_contact() {
         delays: Vec::new(),
         uavs: (0..2)
             .map(|i| swarmplan_core::plan::Path {
-                waypoints: vec![w.start(i), w.goal],
+                waypoints: vec![w.start(i), w.goal_at(swarmplan_core::world::DEPARTURE)],
             })
             .collect(),
     };

@@ -29,7 +29,7 @@ pub fn load_world(args: &ScenarioArgs) -> Result<World> {
     for n in notes {
         eprintln!("note: {n}");
     }
-    warn_unreachable(&loaded.origin, &world.spec);
+    warn_unreachable(&loaded.origin, world.spec());
     Ok(world)
 }
 

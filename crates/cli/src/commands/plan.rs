@@ -307,7 +307,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             args.settings.evaluations,
             method.optimizer.default_budget(),
         )?,
-        seed: args.seed.unwrap_or(world.spec.planning.seed),
+        seed: args.seed.unwrap_or(world.spec().planning.seed),
     };
     let mut req = req;
     if let Some(t) = args.time_limit {
@@ -339,7 +339,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     if !args.json {
         eprintln!(
             "planning {} with {} ({} on the {} encoding, {} init; seed {}, budget {} iterations / {} evaluations, population {}{})",
-            world.spec.name,
+            world.spec().name,
             req.method,
             req.method.optimizer,
             req.method.encoding,
@@ -474,7 +474,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     )
     .with_context(|| format!("{}: cannot write", run_path.display()))?;
     let scenario_path = out.join("scenario.toml");
-    let mut written_spec = world.spec.clone();
+    let mut written_spec = world.spec().clone();
     if written_spec.terrain.source != "procedural" {
         // Absolute, so the folder's scenario.toml resolves from anywhere.
         if let Ok(abs) = std::fs::canonicalize(&written_spec.terrain.source) {
@@ -485,7 +485,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         .with_context(|| format!("{}: cannot write", scenario_path.display()))?;
     let trace: Vec<f64> = result.outcome.trace.iter().map(|r| r.best_cost).collect();
     let iterations: Vec<usize> = result.outcome.trace.iter().map(|r| r.iteration).collect();
-    let title = super::plot::plan_title(&world.spec.name, &artifact);
+    let title = super::plot::plan_title(&world.spec().name, &artifact);
     let figures = if args.no_figures {
         Vec::new()
     } else {
@@ -533,7 +533,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
                 args.attempts,
             );
         }
-        let timing = &world.spec.timing;
+        let timing = &world.spec().timing;
         if timing.pace_is_free() {
             println!(
                 "pace {:.3} (chosen in timing.pace [{}, {}]; 1 = nearest cruise)",

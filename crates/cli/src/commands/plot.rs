@@ -219,9 +219,9 @@ pub fn run(args: &PlotArgs) -> Result<()> {
         let run_json = dir.join("run.json");
         let title = if run_json.exists() {
             let run = RunArtifact::read(&run_json)?;
-            plan_title(&world.spec.name, &run)
+            plan_title(&world.spec().name, &run)
         } else {
-            world.spec.name.clone()
+            world.spec().name.clone()
         };
         let per_uav = if per_uav.is_empty() {
             swarmplan_plot::PerUav::None

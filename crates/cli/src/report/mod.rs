@@ -28,7 +28,7 @@ pub fn escape(s: &str) -> String {
 /// nodes and the paths with absolute altitudes.
 #[must_use]
 pub fn scene(world: &World, plan: &Plan) -> serde_json::Value {
-    let m = &world.spec.map;
+    let m = &world.spec().map;
     let (nx, ny) = (64usize, 56usize);
     let (dx, dy) = (
         (m.x[1] - m.x[0]) / (nx - 1) as f64,
@@ -39,7 +39,7 @@ pub fn scene(world: &World, plan: &Plan) -> serde_json::Value {
         for i in 0..nx {
             z.push(
                 world
-                    .terrain
+                    .terrain()
                     .height(m.x[0] + i as f64 * dx, m.y[0] + j as f64 * dy),
             );
         }
@@ -70,10 +70,10 @@ pub fn scene(world: &World, plan: &Plan) -> serde_json::Value {
     json!({
         "box": {"x": m.x, "y": m.y},
         "terrain": {"nx": nx, "ny": ny, "x0": m.x[0], "y0": m.y[0], "dx": dx, "dy": dy, "z": z, "min": min, "max": max},
-        "threats": world.spec.threats.iter().map(|t| json!({
-            "x": t.x, "y": t.y, "r": t.r, "z": t.z, "ground": world.terrain.height(t.x, t.y),
+        "threats": world.spec().threats.iter().map(|t| json!({
+            "x": t.x, "y": t.y, "r": t.r, "z": t.z, "ground": world.terrain().height(t.x, t.y),
         })).collect::<Vec<_>>(),
-        "ground": world.ground_nodes.iter().map(|g| json!({
+        "ground": world.ground_nodes_at(swarmplan_core::world::DEPARTURE).iter().map(|g| json!({
             "name": g.name, "x": g.position.x, "y": g.position.y, "z": g.position.z,
         })).collect::<Vec<_>>(),
         "paths": paths,
@@ -226,7 +226,7 @@ pub fn plan_report(
     a: &Assessment,
     subtitle: &str,
 ) -> Result<String> {
-    let mut html = head(&format!("swarmplan: {}", world.spec.name));
+    let mut html = head(&format!("swarmplan: {}", world.spec().name));
     let _ = writeln!(html, "<p class=\"sub\">{}</p>", escape(subtitle));
     html.push_str(&viewer(&scene(world, plan)));
     html.push_str(&assessment_tables(a));

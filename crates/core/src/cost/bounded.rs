@@ -76,7 +76,7 @@ pub(super) fn bounded_terms(
 ) -> bool {
     let n = plan.uavs.len();
     let flies_arcs = world.flies_arcs();
-    let objective = &world.spec.objective;
+    let objective = &world.spec().objective;
     // Under the `spso` preset SPSO's terms are the whole cost and there are no fleet terms;
     // a plan with a collision costs +inf, beyond any finite cutoff, so its terms may stop
     // there.

@@ -26,8 +26,8 @@ pub fn check_clearance(
     exact: bool,
     sink: &mut ViolationSink,
 ) -> f64 {
-    let map = &world.spec.map;
-    let terrain = &world.terrain;
+    let map = &world.spec().map;
+    let terrain = world.terrain();
     let mut min_clear = f64::INFINITY;
     for (k, (w, &at)) in path.waypoints.iter().zip(&waypoints.abs).enumerate() {
         let out = (map.x[0] - w.x)

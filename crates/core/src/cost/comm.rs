@@ -57,11 +57,11 @@ pub fn communication(
 ) {
     let n = plan.paths.len();
     out.iter_mut().for_each(|o| *o = CommOutcome::default());
-    let spec = &world.spec.communication;
+    let spec = &world.spec().communication;
     if spec.requirement == CommRequirement::None || n == 0 {
         return;
     }
-    let ch = &world.channel;
+    let ch = world.channel();
     let dt = ch.step();
     // Not `f64::min`: a NaN horizon (a plan of NaN waypoints) keeps sweeping no step.
     let swept = if plan.horizon > MAX_SWEPT_S {
@@ -95,7 +95,8 @@ pub fn communication(
     s.run.clear();
     s.run.resize(n, 0);
     s.run_start.resize(n, (0.0, DVec3::ZERO));
-    let ground = &world.ground_nodes;
+    // Only the count is read here, the same at every time.
+    let ground = world.ground_nodes_at(crate::world::DEPARTURE);
     s.ground_db.clear();
     s.ground_db.resize(ground.len(), 1.0);
     let has_interference = !ch.interference().is_empty();
@@ -174,11 +175,12 @@ pub fn connect(
     reached: &mut [bool],
     queue: &mut Vec<usize>,
 ) -> usize {
-    let ch = &world.channel;
-    let ground = &world.ground_nodes;
+    let ch = world.channel();
+    #[allow(clippy::cast_precision_loss)]
+    let ground = world.ground_nodes_at(k as f64 * ch.step());
     let n = pos.len();
     let link = |a: DVec3, da: f64, b: DVec3, dbb: f64| {
-        a.distance(b) <= ch.link_range(k, da, dbb) && ch.line_of_sight(&world.terrain, a, b)
+        a.distance(b) <= ch.link_range(k, da, dbb) && ch.line_of_sight(world.terrain(), a, b)
     };
     reached.iter_mut().for_each(|r| *r = false);
     queue.clear();
@@ -194,7 +196,7 @@ pub fn connect(
         }
     }
     let direct = queue.len();
-    match world.spec.communication.requirement {
+    match world.spec().communication.requirement {
         CommRequirement::Relay => {
             let mut head = 0;
             while head < queue.len() && queue.len() < n {
@@ -225,14 +227,14 @@ pub fn connect(
 /// figures and tests).
 #[must_use]
 pub fn contact_at(world: &World, t: f64, pos: &[DVec3]) -> Vec<Contact> {
-    let ch = &world.channel;
+    let ch = world.channel();
     let k = (t / ch.step()).round() as usize;
     let db: Vec<f64> = pos
         .iter()
         .map(|p| ch.interference_factor(t, p.x, p.y))
         .collect();
     let gdb: Vec<f64> = world
-        .ground_nodes
+        .ground_nodes_at(t)
         .iter()
         .map(|g| ch.interference_factor(t, g.position.x, g.position.y))
         .collect();
@@ -264,7 +266,7 @@ fn close_run(
     if run > max_run {
         let (t0, p0) = s.run_start[u];
         let secs = run as f64 * dt;
-        let tol = world.spec.communication.max_outage_s;
+        let tol = world.spec().communication.max_outage_s;
         sink.add(
             ViolationKind::Comm,
             u,

@@ -43,7 +43,7 @@ impl GroundCoverage {
     /// when the box would need over 200 cells along an axis).
     #[must_use]
     pub fn new(world: &World, agl: f64, cell: f64) -> Self {
-        let m = &world.spec.map;
+        let m = &world.spec().map;
         let (wx, wy) = (m.x[1] - m.x[0], m.y[1] - m.y[0]);
         let cell = cell
             .max(wx.max(wy) / MAX_CELLS as f64)
@@ -55,13 +55,13 @@ impl GroundCoverage {
             for i in 0..nx {
                 let x = m.x[0] + (i as f64 + 0.5) * cell;
                 let y = m.y[0] + (j as f64 + 0.5) * cell;
-                let p = DVec3::new(x, y, world.terrain.height(x, y) + agl);
+                let p = DVec3::new(x, y, world.terrain().height(x, y) + agl);
                 linked.push(direct_ground_link(world, p));
             }
         }
         Self {
             agl,
-            range: world.channel.nominal_range(),
+            range: world.channel().nominal_range(),
             x0: m.x[0],
             y0: m.y[0],
             cell,
@@ -75,13 +75,13 @@ impl GroundCoverage {
     /// of [`GroundCoverage::default_cell`].
     #[must_use]
     pub fn at_band_top(world: &World) -> Self {
-        Self::new(world, world.spec.map.z_agl[1], Self::default_cell(world))
+        Self::new(world, world.spec().map.z_agl[1], Self::default_cell(world))
     }
 
     /// The cell size reports and figures use: 10 m, or the terrain's cell if coarser.
     #[must_use]
     pub fn default_cell(world: &World) -> f64 {
-        let (dx, dy) = world.terrain.cell();
+        let (dx, dy) = world.terrain().cell();
         dx.max(dy).max(10.0)
     }
 
@@ -146,12 +146,17 @@ impl GroundCoverage {
 /// nominal range and the line of sight (no shadowing, no interference).
 #[must_use]
 pub fn direct_ground_link(world: &World, p: DVec3) -> bool {
-    let range = world.channel.nominal_range();
-    world.ground_nodes.iter().any(|g| {
-        g.position.distance(p) <= range
-            && match &g.horizon {
-                Some(h) => h.visible(p),
-                None => world.channel.line_of_sight(&world.terrain, g.position, p),
-            }
-    })
+    let range = world.channel().nominal_range();
+    world
+        .ground_nodes_at(crate::world::DEPARTURE)
+        .iter()
+        .any(|g| {
+            g.position.distance(p) <= range
+                && match &g.horizon {
+                    Some(h) => h.visible(p),
+                    None => world
+                        .channel()
+                        .line_of_sight(world.terrain(), g.position, p),
+                }
+        })
 }

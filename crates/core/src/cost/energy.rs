@@ -18,7 +18,7 @@ pub const J_PER_WH: f64 = 3600.0;
 /// The paper's Eq. 5 for one path.
 #[must_use]
 pub fn energy_term(world: &World, tp: &TimedPath, k: &Kinematics) -> f64 {
-    let e = &world.spec.energy;
+    let e = &world.spec().energy;
     tp.length + e.alpha * k.vertical_abs + e.beta * k.turn_abs
 }
 
@@ -28,8 +28,8 @@ pub fn physical_energy(world: &World, uav: usize, tp: &TimedPath, k: &Kinematics
     if tp.length == 0.0 {
         return 0.0;
     }
-    let m = &world.spec.energy.model;
-    let payload = world.spec.uavs[uav].payload_kg;
+    let m = &world.spec().energy.model;
+    let payload = world.spec().uavs[uav].payload_kg;
     let cruise = if tp.speed > 0.0 {
         m.power(tp.speed, payload) * tp.length / tp.speed
     } else {
@@ -47,7 +47,7 @@ pub fn physical_energy(world: &World, uav: usize, tp: &TimedPath, k: &Kinematics
 /// Usable energy of UAV `uav`, joules.
 #[must_use]
 pub fn usable_energy(world: &World, uav: usize) -> f64 {
-    let u = &world.spec.uavs[uav];
+    let u = &world.spec().uavs[uav];
     (1.0 - u.reserve) * u.battery_wh * J_PER_WH
 }
 
@@ -63,5 +63,5 @@ pub fn check_battery(world: &World, uav: usize, energy: f64, sink: &mut Violatio
             || format!("needs {energy:.0} J; usable battery {usable:.0} J"),
         );
     }
-    energy / (world.spec.uavs[uav].battery_wh * J_PER_WH)
+    energy / (world.spec().uavs[uav].battery_wh * J_PER_WH)
 }

@@ -33,7 +33,7 @@ pub fn kinematics(
     sums: bool,
     sink: &mut ViolationSink,
 ) -> Kinematics {
-    let spec = &world.spec.uavs[uav];
+    let spec = &world.spec().uavs[uav];
     let max_turn = spec.max_turn_deg.to_radians();
     let max_climb = spec.max_climb_deg.to_radians();
     let tan_climb = if max_climb >= std::f64::consts::FRAC_PI_2 {

@@ -168,7 +168,7 @@ impl Scratch {
 #[must_use]
 pub fn assess(world: &World, plan: &Plan, report: bool) -> Assessment {
     let mut scratch = Scratch::default();
-    let profile = world.spec.planning.profile;
+    let profile = world.spec().planning.profile;
     let mut sink = if report {
         ViolationSink::collecting(profile)
     } else {
@@ -189,7 +189,7 @@ pub fn assess(world: &World, plan: &Plan, report: bool) -> Assessment {
 }
 
 fn penalty(world: &World, violation: f64) -> f64 {
-    let o = &world.spec.objective;
+    let o = &world.spec().objective;
     if o.preset == ObjectivePreset::Spso || violation == 0.0 {
         0.0
     } else {
@@ -239,7 +239,7 @@ pub fn assess_bounded(
     cutoff: Cutoff,
 ) -> Option<(f64, f64)> {
     let n = plan.uavs.len();
-    let spso_preset = world.spec.objective.preset == ObjectivePreset::Spso;
+    let spso_preset = world.spec().objective.preset == ObjectivePreset::Spso;
     scratch.own_terms.serve(world.id());
     scratch.timed.fill(world, plan);
     let flies_arcs = world.flies_arcs();
@@ -265,7 +265,7 @@ pub fn assess_bounded(
         }
         // When it flies arcs, what is flown holds the turns' tangents.
         let flown = flies_arcs.then_some(motion);
-        let collisions = spso::Collisions::of(&world.spec.objective, f64::INFINITY);
+        let collisions = spso::Collisions::of(&world.spec().objective, f64::INFINITY);
         let own = &mut scratch.own_terms;
         for u in 0..n {
             let on_waypoints = waypoint_terms(
@@ -294,7 +294,7 @@ pub fn assess_bounded(
         r.raw[TermId::Communication] = scratch.comm_out[u].cost;
         r.raw[TermId::Obstacle] = scratch.prox_out[u];
         r.outage_s = scratch.comm_out[u].outage_s;
-        r.weighted = r.raw.weighted(&world.spec.objective);
+        r.weighted = r.raw.weighted(&world.spec().objective);
         r.cost = r.weighted.sum();
         terms_cost += r.cost;
     }
@@ -386,7 +386,7 @@ fn waypoint_terms(
     let key = (
         u,
         plan.uavs[u].waypoints.as_slice(),
-        world.spec.uavs[u].turn_radius,
+        world.spec().uavs[u].turn_radius,
     );
     let memoise = collisions != spso::Collisions::InfiniteAndStop;
     memo.waypoint_terms(key, memoise, sink, |sink| {
@@ -421,7 +421,7 @@ fn waypoint_terms_afresh(
             u,
             &tp.abs,
             |k| tp.time_at(k),
-            world.spec.uavs[u].turn_radius,
+            world.spec().uavs[u].turn_radius,
             &flown.paths[u].tangents,
             sink,
         );
@@ -448,7 +448,11 @@ fn flown_terms(
     let tp = &timed.paths[u];
     let fp = &motion.paths[u];
     let kin = &on_waypoints.kin;
-    let key = (u, path.waypoints.as_slice(), world.spec.uavs[u].turn_radius);
+    let key = (
+        u,
+        path.waypoints.as_slice(),
+        world.spec().uavs[u].turn_radius,
+    );
     let min_clearance = memo.flown_checks(key, !exact, sink, |sink| {
         if flies_arcs {
             crate::flight::check_arc_threats(world, u, fp, sink);

@@ -130,7 +130,7 @@ struct TimeUnit {
 
 impl TimeUnit {
     fn of(world: &World, timed: &TimedPlan) -> Self {
-        let common_arrival = world.spec.timing.policy == TimingPolicy::CommonArrival;
+        let common_arrival = world.spec().timing.policy == TimingPolicy::CommonArrival;
         let seconds = if common_arrival {
             timed.paths.first().map_or(0.0, |p| p.arrival)
         } else {
@@ -302,19 +302,23 @@ pub fn proximity(
 ) {
     let n = timed.paths.len();
     out.iter_mut().for_each(|o| *o = 0.0);
-    let eps = world.spec.objective.obstacle_epsilon;
+    let eps = world.spec().objective.obstacle_epsilon;
     // Waypoint-to-threat part (summed from 0 in the same order as a fresh sweep would).
     s.threat_shares
         .resize_with(plan.uavs.len(), ThreatShare::default);
     for (u, path) in plan.uavs.iter().enumerate() {
-        let size = world.spec.uavs[u].size;
-        out[u] = s.threat_shares[u].of(&path.waypoints, size, eps, &world.spec.threats);
+        let size = world.spec().uavs[u].size;
+        out[u] = s.threat_shares[u].of(&path.waypoints, size, eps, &world.spec().threats);
     }
     if n < 2 {
         return;
     }
-    let timing = &world.spec.timing;
-    let (zone, sep, goal) = (timing.zone_radius, timing.separation, world.goal);
+    let timing = &world.spec().timing;
+    let (zone, sep, goal) = (
+        timing.zone_radius,
+        timing.separation,
+        world.goal_at(crate::world::DEPARTURE),
+    );
     let unit = TimeUnit::of(world, timed);
     s.motion.resize_with(n, Motion::default);
     for (m, tp) in s.motion.iter_mut().zip(&timed.paths) {

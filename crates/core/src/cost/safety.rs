@@ -14,7 +14,7 @@ pub fn safety_term(
     segments: usize,
     sink: &mut ViolationSink,
 ) -> f64 {
-    let u = &world.spec.uavs[uav];
+    let u = &world.spec().uavs[uav];
     let [vmin, vmax] = u.speed;
     let segments = segments as f64;
     let mut j = 0.0;

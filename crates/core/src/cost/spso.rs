@@ -78,7 +78,7 @@ pub fn spso_terms(
     collisions: Collisions,
     sink: &mut ViolationSink,
 ) -> SpsoTerms {
-    let size = world.spec.uavs[uav].size;
+    let size = world.spec().uavs[uav].size;
     let mut terms = SpsoTerms {
         length: tp.length,
         threat: threat_term(world, uav, size, path, tp, collisions, sink),
@@ -109,7 +109,7 @@ fn threat_term(
     let danger = DANGER_FACTOR * size;
     let mut j2 = 0.0;
     let w = &path.waypoints;
-    for t in &world.spec.threats {
+    for t in &world.spec().threats {
         let hard = t.r + size;
         let outer = hard + danger;
         for k in 0..w.len().saturating_sub(1) {
@@ -166,7 +166,7 @@ fn altitude_term(
     sink: &mut ViolationSink,
 ) -> f64 {
     let inf = collisions != Collisions::Penalised;
-    let [zmin, zmax] = world.spec.map.z_agl;
+    let [zmin, zmax] = world.spec().map.z_agl;
     let mid = 0.5 * (zmin + zmax);
     let w = &path.waypoints;
     let mut j3 = 0.0;

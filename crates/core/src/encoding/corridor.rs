@@ -39,10 +39,10 @@ pub type Corridors = Vec<Vec<DVec2>>;
 /// start to the goal, or empty when none was found.
 #[must_use]
 pub fn corridors(world: &World) -> Corridors {
-    let goal = world.goal.truncate();
+    let goal = world.goal_at(crate::world::DEPARTURE).truncate();
     let mut out: Vec<Vec<DVec2>> = Vec::new();
     let mut done: Vec<(DVec2, f64, usize)> = Vec::new();
-    for (i, u) in world.spec.uavs.iter().enumerate() {
+    for (i, u) in world.spec().uavs.iter().enumerate() {
         let start = world.start(i).truncate();
         if let Some(&(_, _, j)) = done.iter().find(|(s, z, _)| *s == start && *z == u.size) {
             let c = out[j].clone();
@@ -50,16 +50,23 @@ pub fn corridors(world: &World) -> Corridors {
             continue;
         }
         let circles: Vec<(DVec2, f64)> = world
-            .spec
+            .spec()
             .threats
             .iter()
             .map(|t| (DVec2::new(t.x, t.y), t.r + u.size))
             .collect();
         let band = DANGER_FACTOR * u.size;
         let margins = [band + CORNER_CUT, band, 0.5 * band, 0.0];
-        let found = margins
-            .iter()
-            .find_map(|&m| corridor(world.spec.map.x, world.spec.map.y, &circles, m, start, goal));
+        let found = margins.iter().find_map(|&m| {
+            corridor(
+                world.spec().map.x,
+                world.spec().map.y,
+                &circles,
+                m,
+                start,
+                goal,
+            )
+        });
         done.push((start, u.size, i));
         out.push(found.unwrap_or_default());
     }

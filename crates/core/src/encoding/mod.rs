@@ -107,14 +107,14 @@ pub struct Frame {
 impl Frame {
     #[must_use]
     pub fn of(world: &World) -> Self {
-        let m = &world.spec.map;
+        let m = &world.spec().map;
         Self {
             starts: (0..world.uav_count()).map(|i| world.start(i)).collect(),
-            goal: world.goal,
+            goal: world.goal_at(crate::world::DEPARTURE),
             x: m.x,
             y: m.y,
             z: m.z_agl,
-            n: world.spec.planning.waypoints,
+            n: world.spec().planning.waypoints,
         }
     }
 
@@ -154,7 +154,7 @@ pub fn build_along(
     match kind {
         EncodingKind::Spherical => Box::new(spherical::Spherical::along_guides(
             frame,
-            if world.spec.planning.spso_angles {
+            if world.spec().planning.spso_angles {
                 spherical::AngleConvention::Spso
             } else {
                 spherical::AngleConvention::Consistent

@@ -50,7 +50,7 @@ impl BlockProblem for PlanningProblem<'_> {
             let mut b = b.borrow_mut();
             let (plan, scratch) = &mut *b;
             self.encoding.decode_into(x, plan);
-            let mut sink = ViolationSink::new(self.world.spec.planning.profile)
+            let mut sink = ViolationSink::new(self.world.spec().planning.profile)
                 .sharing(self.world.uav_count(), std::mem::take(by_block));
             let assessed = assess_bounded(
                 self.world,
@@ -69,7 +69,7 @@ impl BlockProblem for PlanningProblem<'_> {
     /// ([`crate::encoding::paced`]) and its departure delay when delays are free
     /// ([`crate::encoding::delayed`]).
     fn block_size(&self) -> usize {
-        let timing = &self.world.spec.timing;
+        let timing = &self.world.spec().timing;
         3 * self.frame.n + usize::from(timing.pace_is_free()) + usize::from(timing.delay_is_free())
     }
 
@@ -95,7 +95,7 @@ impl BlockProblem for PlanningProblem<'_> {
             return false;
         }
         let mut plan = self.encoding.decode(x);
-        let timing = &self.world.spec.timing;
+        let timing = &self.world.spec().timing;
         if site == Some(f.n) && timing.delay_is_free() && block < plan.delays.len() {
             let d: f64 = StandardNormal.sample(rng);
             let delay = &mut plan.delays[block];
@@ -152,7 +152,7 @@ impl BlockProblem for PlanningProblem<'_> {
         let plan = self.encoding.decode(x);
         let assessed = assess(self.world, &plan, true);
         let path = &plan.uavs[block].waypoints;
-        let delayed = self.world.spec.timing.delay_is_free();
+        let delayed = self.world.spec().timing.delay_is_free();
         out.resize(n + usize::from(delayed), 0.0);
         for v in assessed.violations.iter().flatten() {
             if !v.hard || (v.uav != block && v.other != Some(block)) {
@@ -199,7 +199,7 @@ impl BlockProblem for PlanningProblem<'_> {
             return false;
         }
         let mut plan = self.encoding.decode(x);
-        let sep = self.world.spec.timing.separation.max(1.0);
+        let sep = self.world.spec().timing.separation.max(1.0);
         let angle = rand::Rng::random::<f64>(rng) * std::f64::consts::TAU;
         let reach = sep
             * (SHIFT_SEPARATIONS[0]
@@ -224,7 +224,7 @@ impl PlanningProblem<'_> {
     /// own if clear), at a height drawn uniformly in the altitude band. False (nothing
     /// changed) when no other UAV's start (or goal) is within the zone of its own.
     fn zone_move(&self, plan: &mut Plan, block: usize, at_start: bool, rng: &mut Rng) -> bool {
-        let timing = &self.world.spec.timing;
+        let timing = &self.world.spec().timing;
         let f = &self.frame;
         let (n, zone) = (f.n, timing.zone_radius);
         if n == 0 || zone <= 0.0 {
@@ -235,7 +235,7 @@ impl PlanningProblem<'_> {
             if at_start {
                 plan.uavs[u].waypoints[0]
             } else {
-                self.world.goal
+                self.world.goal_at(crate::world::DEPARTURE)
             }
         };
         let centre = centre_of(block);

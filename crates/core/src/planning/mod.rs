@@ -77,7 +77,7 @@ impl<'w> PlanningProblem<'w> {
         corridors: crate::encoding::corridor::Corridors,
     ) -> Self {
         let mut path_encoding = encoding::build_along(kind, world, &corridors);
-        let timing = &world.spec.timing;
+        let timing = &world.spec().timing;
         if timing.pace_is_free() {
             path_encoding = Box::new(encoding::paced::Paced::new(
                 path_encoding,
@@ -185,7 +185,7 @@ impl PlanningProblem<'_> {
         scratch: &mut Scratch,
     ) -> Option<Evaluation> {
         self.encoding.decode_into(x, plan);
-        let mut sink = ViolationSink::new(self.world.spec.planning.profile);
+        let mut sink = ViolationSink::new(self.world.spec().planning.profile);
         assess_bounded(
             self.world,
             plan,
@@ -200,8 +200,8 @@ impl PlanningProblem<'_> {
     /// A pace uniform in the scenario's range when it is free (no draw otherwise, so runs
     /// on a fixed pace keep their random streams).
     fn draw_pace(&self, rng: &mut Rng, plan: &mut Plan) {
-        let [lo, hi] = self.world.spec.timing.pace;
-        if self.world.spec.timing.pace_is_free() {
+        let [lo, hi] = self.world.spec().timing.pace;
+        if self.world.spec().timing.pace_is_free() {
             let u: f64 = rand::Rng::random(rng);
             plan.pace = lo + u * (hi - lo);
         }
@@ -210,7 +210,7 @@ impl PlanningProblem<'_> {
     /// Each UAV's departure delay uniform in [0, max_delay] when delays are free (no draw
     /// otherwise).
     fn draw_delays(&self, rng: &mut Rng, plan: &mut Plan) {
-        let timing = &self.world.spec.timing;
+        let timing = &self.world.spec().timing;
         plan.delays.clear();
         if timing.delay_is_free() {
             for _ in 0..self.world.uav_count() {
@@ -231,7 +231,7 @@ impl Problem for PlanningProblem<'_> {
             let mut b = b.borrow_mut();
             let (plan, scratch) = &mut *b;
             self.encoding.decode_into(x, plan);
-            let mut sink = ViolationSink::new(self.world.spec.planning.profile);
+            let mut sink = ViolationSink::new(self.world.spec().planning.profile);
             let (cost, violation) = assess_into(self.world, plan, scratch, &mut sink, false);
             Evaluation::new(cost, violation)
         })

@@ -24,6 +24,12 @@ pub use terrain::{Sampling, Terrain};
 pub use threat::Threat;
 pub use validate::SpecError;
 
+/// The time, in seconds from the fleet's departure, at which readers without a time of
+/// their own look at what may move ([`World::goal_at`], [`World::ground_nodes_at`]): the
+/// frame an encoding draws its paths in, threat-free corridors, the ground-coverage map.
+/// Greppable, so that a moving UGV0 finds every such reader.
+pub const DEPARTURE: f64 = 0.0;
+
 /// A ground radio node (ground control station, UGV0, extra relays), absolute position.
 #[derive(Debug, Clone)]
 pub struct GroundNode {
@@ -78,13 +84,13 @@ pub struct NodeOutside {
 /// A validated scenario with its terrain and channel.
 #[derive(Debug, Clone)]
 pub struct World {
-    pub spec: ScenarioSpec,
-    pub terrain: Terrain,
-    pub channel: Channel,
+    spec: ScenarioSpec,
+    terrain: Terrain,
+    channel: Channel,
     /// Ground nodes: the ground station (if on), UGV0, then the extra nodes.
-    pub ground_nodes: Vec<GroundNode>,
+    ground_nodes: Vec<GroundNode>,
     /// Goal [x, y, z_agl].
-    pub goal: DVec3,
+    goal: DVec3,
     /// Which built world this is, for memos of what depends on it.
     id: WorldId,
 }
@@ -117,6 +123,43 @@ impl Clone for WorldId {
 }
 
 impl World {
+    /// The validated scenario, as its file says it.
+    #[must_use]
+    pub fn spec(&self) -> &ScenarioSpec {
+        &self.spec
+    }
+
+    /// The terrain's height grid.
+    #[must_use]
+    pub fn terrain(&self) -> &Terrain {
+        &self.terrain
+    }
+
+    /// The time-varying channel: range R(t), interference windows, shadowing.
+    #[must_use]
+    pub fn channel(&self) -> &Channel {
+        &self.channel
+    }
+
+    /// The ground radio nodes at time `t` (seconds from the fleet's departure): the ground
+    /// station (if on), UGV0, then the extra nodes. Static today, the same at every `t`;
+    /// a moving UGV0 changes this accessor and the timing, not its readers (docs/model.md,
+    /// "A world that can move").
+    #[must_use]
+    pub fn ground_nodes_at(&self, t: f64) -> &[GroundNode] {
+        let _ = t;
+        &self.ground_nodes
+    }
+
+    /// Where UGV0 recovers the fleet at time `t` (seconds from departure): [x, y, z above
+    /// ground]. Static today; readers pass the time they mean (a UAV's arrival), so a
+    /// moving UGV0 hooks in here.
+    #[must_use]
+    pub fn goal_at(&self, t: f64) -> DVec3 {
+        let _ = t;
+        self.goal
+    }
+
     /// This world's identity (fresh for each world built or cloned).
     #[must_use]
     pub fn id(&self) -> u64 {

@@ -19,6 +19,7 @@ mod qgc;
 use std::fmt;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
+use swarmplan_core::world::DEPARTURE;
 
 use glam::DVec3;
 use swarmplan_core::plan::Plan;
@@ -226,7 +227,7 @@ impl Mission {
         if plan.uavs.len() != n {
             return Err(ExportError::Plan(format!(
                 "scenario `{}` has {n} UAVs, the plan has {}",
-                world.spec.name,
+                world.spec().name,
                 plan.uavs.len()
             )));
         }
@@ -245,7 +246,7 @@ impl Mission {
             }
         }
         let offset = frame.altitude_offset();
-        let ground = |x: f64, y: f64| world.terrain.height(x, y) + offset;
+        let ground = |x: f64, y: f64| world.terrain().height(x, y) + offset;
         let timed = TimedPlan::new(world, plan);
         let arcs = world.flies_arcs();
         let flown = TimedPlan::flown(world, plan);
@@ -280,7 +281,7 @@ impl Mission {
                     Ok(FlownPoint {
                         local_abs: *a,
                         geo: frame.to_geodetic(*a)?,
-                        alt_agl_m: a.z - world.terrain.height(a.x, a.y),
+                        alt_agl_m: a.z - world.terrain().height(a.x, a.y),
                         time_s: fp.time_at(k),
                         on_arc: k > 0 && fp.flown.get(k - 1).is_some_and(|f| f.arc),
                     })
@@ -293,18 +294,18 @@ impl Mission {
                 delay: fp.delay,
                 depart_s: fp.depart,
                 length_m: fp.length,
-                size_m: world.spec.uavs[i].size,
+                size_m: world.spec().uavs[i].size,
                 turn_radius_m: if arcs {
-                    world.spec.uavs[i].turn_radius
+                    world.spec().uavs[i].turn_radius
                 } else {
                     0.0
                 },
                 flown: flown_points,
             });
         }
-        let mut threats = Vec::with_capacity(world.spec.threats.len());
-        for (index, t) in world.spec.threats.iter().enumerate() {
-            let h = world.terrain.height(t.x, t.y);
+        let mut threats = Vec::with_capacity(world.spec().threats.len());
+        for (index, t) in world.spec().threats.iter().enumerate() {
+            let h = world.terrain().height(t.x, t.y);
             let ring = (0..=CIRCLE_VERTICES)
                 .map(|k| {
                     // The last vertex repeats the first exactly (a closed ring).
@@ -323,13 +324,13 @@ impl Mission {
                 ring,
             });
         }
-        let g = world.goal;
+        let g = world.goal_at(DEPARTURE);
         Ok(Self {
-            scenario: world.spec.name.clone(),
+            scenario: world.spec().name.clone(),
             frame: frame.describe(),
             paths,
             threats,
-            goal: frame.to_geodetic(DVec3::new(g.x, g.y, world.terrain.height(g.x, g.y)))?,
+            goal: frame.to_geodetic(DVec3::new(g.x, g.y, world.terrain().height(g.x, g.y)))?,
             infeasible: {
                 let a = swarmplan_core::cost::assess(world, plan, true);
                 (!a.feasible()).then(|| a.verdict())
