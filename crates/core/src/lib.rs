@@ -1,6 +1,7 @@
 //! swarmplan-core: the planning problem of "Cooperative Path Planning for Multi-UAVs with
-//! Time-Varying Communication and Energy Consumption Constraints" (DLS-SMPSO paper), as
-//! resolved in the project's DESIGN.md, and the optimizers that solve it.
+//! Time-Varying Communication and Energy Consumption Constraints" (the DLS-SMPSO paper:
+//! Guo, Gan, Hu 2024, Drones 8(11):654, doi:10.3390/drones8110654), as docs/model.md
+//! resolves and extends it, and the optimizers that solve it. References: docs/references.md.
 //!
 //! The crate does no I/O. It is split the way OMPL splits motion planning:
 //! - [`world`]: what exists (terrain, threats, fleet, channel, energy model, scenario);

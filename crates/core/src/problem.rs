@@ -124,7 +124,7 @@ impl Evaluation {
     }
 
     /// Strictly better under Deb's feasibility rules (Deb 2000, Comput. Methods Appl. Mech.
-    /// Eng. 186:311-338): the smaller violation wins, and between equal violations (two
+    /// Eng. 186:311-338, doi:10.1016/S0045-7825(99)00389-8): the smaller violation wins, and between equal violations (two
     /// feasible candidates in particular) the lower cost.
     #[must_use]
     pub fn better_feasibility_first(&self, other: &Self) -> bool {

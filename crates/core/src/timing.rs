@@ -1,5 +1,5 @@
 //! When each UAV is where. The paper needs time (Eq. 4 speeds, Eq. 6 time steps) but never
-//! defines it; DESIGN.md's timing policies do:
+//! defines it; the timing policies of docs/model.md ("Time") do:
 //! - *common arrival* (default): all UAVs leave at t = 0 and arrive together at T, each at
 //!   constant speed v_i = L_i / T. T minimises sum_i (v_i - cruise_i)^2 in closed form
 //!   (1/T = sum L_i c_i / sum L_i^2) and is then clamped into the interval where every v_i

@@ -2,7 +2,7 @@
 //! the outage constraint.
 //!
 //! The paper's Eq. 6 (sum of 1/(d - d_max) over pairs beyond range) rewards drifting further
-//! apart once a link is lost, so DESIGN.md replaces it: at every step (1 s) each UAV must be
+//! apart once a link is lost, so docs/model.md ("Communication") replaces it: at every step (1 s) each UAV must be
 //! connected to a ground node, directly or through other UAVs (`relay`), or have at least
 //! one link (`neighbour`). A UAV out of contact at a step costs `outage_base_cost` plus its
 //! gap: how far (metres) it is beyond the range of the nearest node that is in contact. The

@@ -1,4 +1,4 @@
-//! Angle encoding (theta-PSO, Zhong, Li, Qian 2008; used for UAV routes by Fu, Ding, Zhou
+//! Angle encoding (theta-PSO, Zhong, Li, Qian 2008, doi:10.1631/jzus.A071278; used for UAV routes by Fu, Ding, Zhou
 //! 2012 as APSO): each coordinate = (max + min)/2 + (max - min)/2 sin(theta), with theta in
 //! [-pi/2, pi/2] (the paper's range, where sin is one-to-one). With `periodic` the phases
 //! live on the whole circle [-pi, pi) and wrap, since sin is 2 pi-periodic.

@@ -1,4 +1,5 @@
-//! Spherical motion encoding (SPSO, Phung & Ha 2021; DLS-SMPSO Eqs. 16-17): each free
+//! Spherical motion encoding (SPSO, Phung & Ha 2021, doi:10.1016/j.asoc.2021.107376;
+//! DLS-SMPSO Eqs. 16-17, doi:10.3390/drones8110654): each free
 //! waypoint is a move (r, psi, phi) from the previous one: r the length, psi the climb angle,
 //! phi the heading. Bounds: r in [0, 2 |start - goal| / n], psi in [-pi/4, pi/4],
 //! phi in [phi0 - pi/4, phi0 + pi/4] around the start-goal bearing phi0 = atan2(dy, dx).

@@ -1,5 +1,5 @@
 //! Artificial bee colony (Karaboga 2005, Tech. Rep. TR06, Erciyes Univ.; Karaboga & Akay
-//! 2009, Appl. Math. Comput. 214:108-132).
+//! 2009, Appl. Math. Comput. 214:108-132, doi:10.1016/j.amc.2009.03.090).
 //!
 //! SN = population / 2 food sources x_i, each with a trial counter. One iteration (cycle):
 //!

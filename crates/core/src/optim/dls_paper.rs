@@ -1,4 +1,5 @@
-//! DLS-SMPSO, paper mode (the DLS-SMPSO paper, Eqs. 18-21 and Algorithm 1): the PSO of
+//! DLS-SMPSO, paper mode (the DLS-SMPSO paper, Guo, Gan, Hu 2024, Drones 8(11):654,
+//! doi:10.3390/drones8110654, Eqs. 18-21 and Algorithm 1): the PSO of
 //! [`super::pso`] with SPSO's settings, a deterministic pull towards gbest and
 //! stagnation-triggered dimensional learning ([`super::dimensional`]).
 //!

@@ -1,4 +1,5 @@
-//! Grey wolf optimizer (Mirjalili, Mirjalili, Lewis 2014, Adv. Eng. Softw. 69:46-61).
+//! Grey wolf optimizer (Mirjalili, Mirjalili, Lewis 2014, Adv. Eng. Softw. 69:46-61,
+//! doi:10.1016/j.advengsoft.2013.12.007).
 //!
 //! The pack follows its three leaders alpha, beta, delta. At step t (0-based) of T,
 //! a = 2 - 2 t / T (T: the budget; under an evaluation budget t / T is the share of

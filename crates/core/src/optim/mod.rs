@@ -11,12 +11,14 @@
 //! | Optimizer | File | Reference |
 //! |---|---|---|
 //! | `pso` | [`pso`] | Kennedy & Eberhart 1995; Shi & Eberhart 1998; Phung & Ha 2021 |
-//! | `dls-paper` | [`dls_paper`] | the DLS-SMPSO paper |
+//! | `dls-paper` | [`dls_paper`] | the DLS-SMPSO paper (Guo, Gan, Hu 2024, Drones 8(11):654, doi:10.3390/drones8110654) |
 //! | `dls-exemplar` | [`dls_exemplar`] | Xu et al. 2019 (TSLPSO's dimensional learning) |
 //! | `qpso` | [`qpso`] | Sun, Feng, Xu 2004 |
 //! | `gwo` | [`gwo`] | Mirjalili, Mirjalili, Lewis 2014 |
 //! | `abc` | [`abc`] | Karaboga 2005; Karaboga & Akay 2009 |
 //! | `coop` | [`cooperative`] | cooperative coevolution (Potter & De Jong 1994; van den Bergh & Engelbrecht 2004) with Deb's feasibility rules (Deb 2000): swarmplan's own |
+//!
+//! Full references with DOIs: docs/references.md.
 //!
 //! An optimizer is one part of a method ([`crate::method`]): PSO on the cartesian, angle
 //! and spherical encodings is the paper's PSO, APSO and SPSO. [`build`] makes any optimizer

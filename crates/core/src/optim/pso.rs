@@ -1,6 +1,7 @@
-//! Particle swarm optimization: the velocity form of Kennedy & Eberhart (1995, Proc. ICNN)
-//! with the inertia weight of Shi & Eberhart (1998, Proc. IEEE CEC), in the variant of
-//! SPSO's public code (Phung & Ha 2021, Appl. Soft Comput. 107:107376).
+//! Particle swarm optimization: the velocity form of Kennedy & Eberhart (1995, Proc. ICNN,
+//! doi:10.1109/ICNN.1995.488968) with the inertia weight of Shi & Eberhart (1998, Proc. IEEE
+//! ICEC, doi:10.1109/ICEC.1998.699146), in the variant of SPSO's public code (Phung & Ha
+//! 2021, Appl. Soft Comput. 107:107376, doi:10.1016/j.asoc.2021.107376).
 //!
 //! For particle i and every dimension j, with fresh r1, r2 ~ U(0, 1) per element:
 //!

@@ -1,5 +1,5 @@
-//! Quantum-behaved PSO (Sun, Feng, Xu 2004, Proc. IEEE CEC; Sun et al. 2012, Evol.
-//! Comput. 20(3)). No velocity: each particle is re-sampled around a random local
+//! Quantum-behaved PSO (Sun, Feng, Xu 2004, Proc. IEEE CEC, doi:10.1109/CEC.2004.1330875;
+//! Sun et al. 2012, Evol. Comput. 20(3):349-393, doi:10.1162/EVCO_a_00049). No velocity: each particle is re-sampled around a random local
 //! attractor, at a distance scaled by its gap to the mean best position.
 //!
 //! At the start of iteration t, mbest = (1/N) sum_i pbest_i. Then for particle i and every

@@ -1,4 +1,4 @@
-//! Rotary-wing propulsion power of Zeng, Xu and Zhang (IEEE Trans. Wireless Commun. 18(4),
+//! Rotary-wing propulsion power of Zeng, Xu and Zhang (doi:10.1109/TWC.2019.2902559; IEEE Trans. Wireless Commun. 18(4),
 //! 2019, Eq. 12), used for the battery constraint:
 //!
 //! P(V) = P0 (1 + 3 V^2 / U_tip^2) + Pi (sqrt(1 + V^4 / (4 v0^4)) - V^2 / (2 v0^2))^(1/2)

@@ -3,7 +3,8 @@
 //! A block is one scenario (or one seed shared by all algorithms); within a block the k
 //! costs are ranked (lowest cost = rank 1, ties averaged), which removes the block's own
 //! difficulty. With `R_j` the rank sum of treatment j and `t` the sizes of tie groups
-//! within blocks (Friedman 1937; tie correction as in scipy and Conover, "Practical
+//! within blocks (Friedman 1937, J. Am. Stat. Assoc. 32(200):675-701,
+//! doi:10.1080/01621459.1937.10503522; tie correction as in scipy and Conover, "Practical
 //! Nonparametric Statistics"):
 //!
 //! ```text

@@ -2,7 +2,8 @@
 //!
 //! Comparing one algorithm against m others (or all pairs) runs m tests; Holm's step-down
 //! procedure controls the family-wise error rate without Bonferroni's loss of power and
-//! without assumptions on how the tests depend on each other (Holm 1979). With the
+//! without assumptions on how the tests depend on each other (Holm 1979, Scand. J. Stat. 6(2):65-70,
+//! JSTOR 4615733). With the
 //! p-values sorted ascending, `p(1) <= ... <= p(m)`:
 //!
 //! ```text

@@ -3,7 +3,8 @@
 //!
 //! **Which p-value.** Without ties and with n1 n2 <= [`EXACT_MAX_PAIRS`] (e.g. 50 runs
 //! against 50), the p-value is exact: the null distribution of U is counted over all
-//! C(n, n1) equally likely rank assignments (Mann & Whitney 1947), and
+//! C(n, n1) equally likely rank assignments (Mann & Whitney 1947, Ann. Math.
+//! Stat. 18(1):50-60, doi:10.1214/aoms/1177730491), and
 //! `p = min(1, 2 P(U >= max(U, n1 n2 - U)))`, which is scipy's `method="exact"`. With ties
 //! (which the exact count does not cover) or larger samples, the normal approximation
 //! below, which is accurate there. [`RankSumTest::method`] says which was used. The first

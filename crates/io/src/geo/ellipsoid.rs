@@ -6,7 +6,7 @@
 //! - ENU: east, north, up metres in the plane tangent to the ellipsoid at an origin.
 //!
 //! Accuracy: the forward map is exact to rounding (~1e-9 m at the Earth's radius); the
-//! inverse iterates Bowring's (1976) formula until the latitude changes by less than
+//! inverse iterates Bowring's (1976, Surv. Rev. 23(181):323-327, doi:10.1179/sre.1976.23.181.323) formula until the latitude changes by less than
 //! 1e-15 rad (two to three passes for points within 10 km of the surface), and the height
 //! comes from `h = p cos(lat) + z sin(lat) - a^2 / N`, which is well conditioned at every
 //! latitude. `tests/geo.rs` checks both against independently derived points to 1 mm.

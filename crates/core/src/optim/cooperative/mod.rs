@@ -4,7 +4,8 @@
 //! Why: the paper's methods search one 150-dimensional vector for five UAVs at once, so a
 //! move that repairs one UAV's threat crossing usually breaks another's separation, and the
 //! swarm converges before any plan is feasible. Cooperative coevolution (Potter & De Jong
-//! 1994, PPSN III; for PSO van den Bergh & Engelbrecht 2004, IEEE TEC 8(3):225-239)
+//! 1994, PPSN III, doi:10.1007/3-540-58484-6_269; for PSO van den Bergh & Engelbrecht 2004,
+//! IEEE TEC 8(3):225-239, doi:10.1109/TEVC.2004.826069)
 //! searches one block (one UAV's path) at a time inside a *context*: the best whole plan so
 //! far, whose other blocks stay fixed. Candidates are compared by Deb's feasibility rules
 //! ([`Evaluation::better_feasibility_first`]) instead of by penalised cost, so the search
