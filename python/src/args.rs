@@ -6,8 +6,8 @@ use std::path::PathBuf;
 use pyo3::PyResult;
 use swarmplan_core::feasibility::FeasibilityProfile;
 use swarmplan_core::method::Method;
-use swarmplan_core::optim::params::{POPULATION_EXPECTED, POPULATION_RANGE};
 use swarmplan_core::optim::{Budget, OptimizerParams};
+use swarmplan_experiment::settings::{Resolved, RunSettings};
 
 use crate::errors::bad;
 
@@ -40,51 +40,36 @@ pub fn profile(v: &str) -> PyResult<FeasibilityProfile> {
         .ok_or_else(|| bad(format!("profile: expected `strict` or `paper`, got `{v}`")))
 }
 
-/// The budget of `iterations` and / or `evaluations`, or `default` when neither is given.
+/// The budget of `iterations` and / or `evaluations`, or `default` when neither is given
+/// (checked as the CLI checks them: [`RunSettings::budget`]).
 pub fn budget(
     iterations: Option<i128>,
     evaluations: Option<i128>,
     default: Budget,
 ) -> PyResult<Budget> {
-    let iterations = iterations
-        .map(|v| positive::<usize>("iterations", v))
-        .transpose()?;
-    let evaluations = evaluations
-        .map(|v| positive::<u64>("evaluations", v))
-        .transpose()?;
-    Ok(match (iterations, evaluations) {
-        (None, None) => default,
-        (i, e) => Budget::new(i, e),
-    })
+    RunSettings {
+        iterations,
+        evaluations,
+        ..RunSettings::default()
+    }
+    .budget(default)
+    .map_err(|e| bad(e.to_string()))
 }
 
-/// Optimizer parameters from a TOML file (the CLI's `--params`), then `population`.
+/// Optimizer parameters from a TOML file (the CLI's `--params`), then `population`
+/// ([`RunSettings::params`]).
 pub fn params(path: Option<PathBuf>, population: Option<i128>) -> PyResult<OptimizerParams> {
-    let mut params = match &path {
-        None => OptimizerParams::default(),
-        Some(p) => {
-            let text = std::fs::read_to_string(p)
-                .map_err(|e| bad(format!("{}: cannot read: {e}", p.display())))?;
-            toml::from_str(&text)
-                .map_err(|e| bad(format!("{}: {}", p.display(), e.to_string().trim_end())))?
-        }
-    };
-    if let Some(n) = population {
-        let n = usize::try_from(n)
-            .ok()
-            .filter(|n| POPULATION_RANGE.contains(n))
-            .ok_or_else(|| {
-                bad(format!(
-                    "population: expected {POPULATION_EXPECTED}, got {n}"
-                ))
-            })?;
-        params.set_population(n);
+    RunSettings {
+        params: path,
+        population,
+        ..RunSettings::default()
     }
-    params.validate().map_err(|e| {
-        bad(format!(
-            "{}: {e}",
-            path.map_or("parameters".into(), |p| p.display().to_string())
-        ))
-    })?;
-    Ok(params)
+    .params()
+    .map_err(|e| bad(e.to_string()))
+}
+
+/// The budget and parameters of one run, with its time limit and stop rule
+/// ([`RunSettings::resolve`], as `plan` resolves its flags).
+pub fn run_settings(settings: &RunSettings, default: Budget) -> PyResult<Resolved> {
+    settings.resolve(default).map_err(|e| bad(e.to_string()))
 }

@@ -7,6 +7,7 @@ use pyo3::prelude::*;
 use serde_json::json;
 use swarmplan_core::attempts::{run_attempts, MAX_ATTEMPTS};
 use swarmplan_core::run::RunRequest;
+use swarmplan_experiment::settings::{Resolved, RunSettings};
 use swarmplan_io::artifact::{ArtifactFiles, RunArtifact};
 use swarmplan_io::plan_file::plan_file;
 
@@ -45,22 +46,18 @@ pub fn plan(
         )));
     }
     let method = args::method(method)?;
-    let params = args::params(params, population)?;
+    let settings = RunSettings {
+        iterations,
+        evaluations,
+        population,
+        params,
+        time_limit_s: time_limit,
+        until_feasible,
+    };
+    let Resolved { budget, params } =
+        args::run_settings(&settings, method.optimizer.default_budget())?;
     let loaded = scenario::load(scenario, terrain, profile)?;
     let world = &loaded.world;
-    let mut budget = args::budget(iterations, evaluations, method.optimizer.default_budget())?;
-    if let Some(t) = time_limit {
-        if !(t.is_finite() && t > 0.0 && t <= 1e7) {
-            return Err(bad(format!(
-                "time_limit: expected seconds in (0, 1e7], got {t}"
-            )));
-        }
-        // Truncation intended: milliseconds of a checked, bounded number of seconds.
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        let ms = (t * 1000.0).ceil() as u64;
-        budget.time_limit_ms = Some(ms);
-    }
-    budget.until_feasible = until_feasible;
     let req = RunRequest {
         method,
         params,

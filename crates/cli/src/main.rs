@@ -4,6 +4,7 @@
 mod commands;
 mod render;
 mod report;
+mod settings_args;
 
 use std::path::PathBuf;
 use std::process::ExitCode;

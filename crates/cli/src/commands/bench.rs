@@ -17,7 +17,7 @@ use swarmplan_experiment::suite::{suite, suite_names};
 use swarmplan_experiment::summary::{csv, markdown, summarize_records, ExperimentSummary};
 use swarmplan_experiment::workers;
 
-use super::plan::{budget, load_params, SettingsArgs};
+use crate::settings_args::SettingsArgs;
 
 #[derive(Debug, Args)]
 pub struct BenchArgs {
@@ -189,10 +189,16 @@ fn experiment(args: &BenchArgs) -> Result<ExperimentSpec> {
     }
     if fixed {
         spec.budget_policy = BudgetPolicy::Equal;
-        spec.budget = budget(st.iterations, st.evaluations, equal_budget())?;
+        spec.budget = st
+            .run_settings(None, false)
+            .budget(equal_budget())
+            .map_err(|e| anyhow::anyhow!(e.as_flag()))?;
     }
     if st.params.is_some() || st.population.is_some() {
-        let params = load_params(st.params.as_ref(), st.population)?;
+        let params = st
+            .run_settings(None, false)
+            .params()
+            .map_err(|e| anyhow::anyhow!(e.as_flag()))?;
         let name = if st.params.is_some() {
             "custom"
         } else {

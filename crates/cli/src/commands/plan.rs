@@ -9,7 +9,7 @@ use clap::Args;
 use swarmplan_core::attempts::{run_attempts, MAX_ATTEMPTS};
 use swarmplan_core::encoding::{EncodingKind, InitKind};
 use swarmplan_core::method::Method;
-use swarmplan_core::optim::{Budget, OptimizerParams};
+use swarmplan_core::optim::Budget;
 use swarmplan_core::run::RunRequest;
 use swarmplan_experiment::workers;
 use swarmplan_io::artifact::{ArtifactFiles, RunArtifact};
@@ -18,6 +18,7 @@ use swarmplan_io::plan_file::plan_file;
 use swarmplan_io::scenario::to_toml;
 
 use crate::render;
+use crate::settings_args::SettingsArgs;
 use crate::ScenarioArgs;
 
 #[derive(Debug, Args)]
@@ -199,25 +200,6 @@ impl std::fmt::Display for Infeasible {
 
 impl std::error::Error for Infeasible {}
 
-/// Budget and algorithm settings, shared by `plan` and `bench`.
-#[derive(Debug, Clone, Args)]
-pub struct SettingsArgs {
-    /// Iterations per run (plan's default: 200, the paper's, for the paper's methods, 38,700
-    /// evaluations for swarmplan's own; bench: see --budget). With --evaluations, whichever
-    /// ends first.
-    #[arg(long, allow_negative_numbers = true)]
-    pub iterations: Option<usize>,
-    /// Population size (default 50, the paper's; 10 for swarmplan's sub-swarms).
-    #[arg(long, allow_negative_numbers = true)]
-    pub population: Option<usize>,
-    /// Evaluation budget per run (fair comparisons); with --iterations, whichever ends first.
-    #[arg(long, allow_negative_numbers = true)]
-    pub evaluations: Option<u64>,
-    /// Optimizer parameters as TOML (help text: [`params_help`]).
-    #[arg(long, help = params_help())]
-    pub params: Option<PathBuf>,
-}
-
 /// `--method`'s help, listing the presets from their one list.
 fn method_help() -> String {
     format!(
@@ -228,63 +210,13 @@ fn method_help() -> String {
     )
 }
 
-/// `--params`' help, listing the optimizers' sections from the registry.
-pub fn params_help() -> String {
-    format!(
-        "Optimizer parameters as TOML (sections {})",
-        swarmplan_core::optim::OptimizerKind::sections()
-    )
-}
-
-/// Algorithm parameters from a TOML file, then the population flag.
-pub fn load_params(path: Option<&PathBuf>, population: Option<usize>) -> Result<OptimizerParams> {
-    let mut params = match path {
-        None => OptimizerParams::default(),
-        Some(p) => {
-            let text = std::fs::read_to_string(p)
-                .with_context(|| format!("{}: cannot read", p.display()))?;
-            toml::from_str(&text)
-                .map_err(|e| anyhow::anyhow!("{}: {}", p.display(), e.to_string().trim_end()))?
-        }
-    };
-    if let Some(n) = population {
-        anyhow::ensure!(
-            swarmplan_core::optim::params::POPULATION_RANGE.contains(&n),
-            "--population: expected {}, got {n}",
-            swarmplan_core::optim::params::POPULATION_EXPECTED
-        );
-        params.set_population(n);
-    }
-    params.validate().map_err(|e| {
-        anyhow::anyhow!(
-            "{}: {e}",
-            path.map_or("parameters".into(), |p| p.display().to_string())
-        )
-    })?;
-    Ok(params)
-}
-
-/// The budget from the flags: iterations and / or evaluations; `default` when neither.
-pub fn budget(
-    iterations: Option<usize>,
-    evaluations: Option<u64>,
-    default: Budget,
-) -> Result<Budget> {
-    if let Some(0) = iterations {
-        anyhow::bail!("--iterations: expected at least 1, got 0");
-    }
-    if let Some(0) = evaluations {
-        anyhow::bail!("--evaluations: expected at least 1, got 0");
-    }
-    Ok(match (iterations, evaluations) {
-        (None, None) => default,
-        (i, e) => Budget::new(i, e),
-    })
-}
-
 pub fn run_command(args: &PlanArgs) -> Result<()> {
     let world = super::load_world(&args.scenario)?;
-    let params = load_params(args.settings.params.as_ref(), args.settings.population)?;
+    let resolved = args
+        .settings
+        .run_settings(args.time_limit, args.until_feasible)
+        .resolve(args.method.optimizer.default_budget())
+        .map_err(|e| anyhow::anyhow!(e.as_flag()))?;
     // Before the folder and the run: a bad --export is said at once.
     let export = args
         .export
@@ -301,31 +233,10 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     let method = args.method.with(args.encoding, args.init);
     let req = RunRequest {
         method,
-        params,
-        budget: budget(
-            args.settings.iterations,
-            args.settings.evaluations,
-            method.optimizer.default_budget(),
-        )?,
+        params: resolved.params,
+        budget: resolved.budget,
         seed: args.seed.unwrap_or(world.spec().planning.seed),
     };
-    let mut req = req;
-    if let Some(t) = args.time_limit {
-        anyhow::ensure!(
-            t.is_finite() && t > 0.0 && t <= 1e7,
-            "--time-limit: expected seconds in (0, 1e7], got {}",
-            if t.abs() >= 1e7 || (t != 0.0 && t.abs() < 1e-4) {
-                format!("{t:e}")
-            } else {
-                t.to_string()
-            }
-        );
-        // Truncation intended: milliseconds of a checked, bounded number of seconds.
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        let ms = (t * 1000.0).ceil() as u64;
-        req.budget.time_limit_ms = Some(ms);
-    }
-    req.budget.until_feasible = args.until_feasible;
     // Every argument is checked before the folder is chosen: a bad one leaves no out-2.
     let cores = workers::cores();
     let asked = workers::Asked::from_count_or_env(args.threads);
