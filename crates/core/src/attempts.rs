@@ -46,7 +46,9 @@ pub fn attempt_seed(seed: u64, attempt: usize) -> u64 {
 pub struct AttemptRecord {
     /// 1-based.
     pub attempt: usize,
+    /// The seed it ran from ([`attempt_seed`]).
     pub seed: u64,
+    /// Whether its best plan satisfies every hard constraint.
     pub feasible: bool,
     /// The hard-violation measure of its best plan (0 when feasible).
     #[serde(with = "json_f64")]
@@ -56,7 +58,9 @@ pub struct AttemptRecord {
     /// Penalised cost of its best plan.
     #[serde(with = "json_f64")]
     pub cost: f64,
+    /// Evaluations it spent, initialisation included.
     pub evaluations: u64,
+    /// Wall time of its optimisation, s.
     #[serde(with = "json_f64")]
     pub seconds: f64,
 }
@@ -89,8 +93,11 @@ impl AttemptRecord {
 /// [`run_with_uav_trace`] returns it).
 #[derive(Debug, Clone)]
 pub struct Attempts {
+    /// The kept attempt's run: the first feasible one, or else the best infeasible one.
     pub result: RunResult,
+    /// Per-iteration cost of each UAV in the kept attempt's run.
     pub uav_trace: UavTrace,
+    /// One record per attempt made, in order.
     pub records: Vec<AttemptRecord>,
 }
 

@@ -30,14 +30,19 @@ use crate::world::World;
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum FeasibilityProfile {
+    /// Every kind is hard, and the flown path with its turning arcs is assessed (default).
     #[default]
     Strict,
+    /// The paper's FR: threats, terrain, turn angle and energy are hard, the rest soft;
+    /// straight segments, no turning radius.
     Paper,
 }
 
 impl FeasibilityProfile {
+    /// Both profiles.
     pub const ALL: [Self; 2] = [Self::Strict, Self::Paper];
 
+    /// The name used in scenario files and records (`strict`, `paper`).
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
@@ -107,6 +112,7 @@ pub enum ViolationKind {
 }
 
 impl ViolationKind {
+    /// Every kind.
     pub const ALL: [ViolationKind; 12] = [
         Self::Threat,
         Self::Terrain,
@@ -122,6 +128,7 @@ impl ViolationKind {
         Self::Comm,
     ];
 
+    /// The name used in reports and records (`threat`, `turn-radius`, ...).
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
@@ -189,7 +196,9 @@ impl ViolationKind {
 /// One broken hard constraint.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Violation {
+    /// What was violated.
     pub kind: ViolationKind,
+    /// Index of the UAV that violated it.
     pub uav: usize,
     /// The other UAV of a separation violation.
     #[serde(skip_serializing_if = "Option::is_none", default)]
@@ -231,7 +240,10 @@ pub struct ViolationSink {
     pub soft: f64,
     /// How many violations, hard and soft, were added.
     pub count: usize,
+    /// Which kinds are hard and which only cost.
     pub profile: FeasibilityProfile,
+    /// Every violation added, hard and soft, with place and detail, when collecting (`None`
+    /// otherwise).
     pub list: Option<Vec<Violation>>,
     /// Each UAV's share of `measure`, on request: a violation counts for its UAV and, for a
     /// pair (separation), for the other UAV too. Lets a decomposing optimizer see which
@@ -247,18 +259,26 @@ pub struct ViolationSink {
 /// added again elsewhere.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Deferred {
+    /// What was violated.
     pub kind: ViolationKind,
+    /// Index of the UAV that violated it.
     pub uav: usize,
+    /// How far past the limit, in the unit of the kind.
     pub amount: f64,
+    /// The other UAV of a separation violation.
     pub other: Option<usize>,
 }
 
 /// Where and when a violation happened (all optional).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct At {
+    /// The other UAV of a separation violation.
     pub other: Option<usize>,
+    /// Waypoint or segment index where it applies.
     pub index: Option<usize>,
+    /// Where (x, y, absolute altitude), m.
     pub position: Option<DVec3>,
+    /// When, s after departure.
     pub time: Option<f64>,
 }
 
@@ -291,6 +311,7 @@ impl ViolationSink {
         self
     }
 
+    /// Whether the sink keeps the list of violations.
     #[must_use]
     pub fn is_collecting(&self) -> bool {
         self.list.is_some()

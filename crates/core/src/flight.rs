@@ -112,10 +112,13 @@ pub fn tangent_length(radius: f64, theta: f64) -> f64 {
 pub struct Fillet {
     /// Where the arc leaves the incoming segment and joins the outgoing one.
     pub enter: DVec3,
+    /// Where the arc joins the outgoing segment.
     pub leave: DVec3,
     /// Centre, radius (metres) and angle (radians) of the arc.
     pub centre: DVec3,
+    /// Radius of the arc, m.
     pub radius: f64,
+    /// Angle the arc turns through, rad.
     pub angle: f64,
     /// Direction of flight into the corner (the arc's tangent at `enter`).
     pub heading_in: DVec3,

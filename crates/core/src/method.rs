@@ -39,15 +39,20 @@ use crate::optim::OptimizerKind;
 /// An optimizer on an encoding from an initialisation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Method {
+    /// The search algorithm.
     pub optimizer: OptimizerKind,
+    /// How a point of the search space maps to paths.
     pub encoding: EncodingKind,
+    /// How starting points are drawn.
     pub init: InitKind,
 }
 
 /// A named method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Preset {
+    /// Its name on the command line and in records (`pso`, `spso`, ...).
     pub name: &'static str,
+    /// The optimizer, encoding and initialisation it names.
     pub method: Method,
     /// Whether it is one of the paper's rows (Tables 4-5) or SPSO, its DLS ablation.
     pub paper: bool,

@@ -10,12 +10,14 @@ use serde::{Deserialize, Serialize};
 /// The waypoints of one UAV, start and goal included; z is height above ground.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Path {
+    /// Start, free waypoints and goal, [x, y, z above ground] in m.
     pub waypoints: Vec<DVec3>,
 }
 
 /// All UAVs' paths and the fleet's pace.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Plan {
+    /// One path per UAV, in fleet order.
     pub uavs: Vec<Path>,
     /// Factor on the timing policy's preferred speed ([`crate::timing`]): 1 flies nearest
     /// cruise, 1.3 is 30 % faster where the speed limits allow. Written only when not 1.

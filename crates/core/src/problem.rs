@@ -12,12 +12,16 @@ use crate::rng::Rng;
 /// wrap it instead of clamping.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Bound {
+    /// Lowest allowed value.
     pub lo: f64,
+    /// Highest allowed value.
     pub hi: f64,
+    /// Whether the variable wraps from `hi` back to `lo`.
     pub periodic: bool,
 }
 
 impl Bound {
+    /// A bound `[lo, hi]` that clamps (not periodic).
     #[must_use]
     pub const fn new(lo: f64, hi: f64) -> Self {
         Self {
@@ -27,6 +31,7 @@ impl Bound {
         }
     }
 
+    /// A periodic bound `[lo, hi]`, for an angle that wraps.
     #[must_use]
     pub const fn periodic(lo: f64, hi: f64) -> Self {
         Self {
@@ -36,6 +41,7 @@ impl Bound {
         }
     }
 
+    /// `hi - lo`.
     #[must_use]
     pub fn width(&self) -> f64 {
         self.hi - self.lo
@@ -53,6 +59,7 @@ impl Bound {
         x.clamp(self.lo, self.hi)
     }
 
+    /// Whether `x` lies in `[lo, hi]`.
     #[must_use]
     pub fn contains(&self, x: f64) -> bool {
         x >= self.lo && x <= self.hi
@@ -76,7 +83,9 @@ pub fn fill_uniform(bounds: &[Bound], rng: &mut Rng, out: &mut [f64]) {
 /// candidate satisfies every hard constraint (it is a measure of how far it is from that).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Evaluation {
+    /// The objective; lower is better.
     pub cost: f64,
+    /// How far the candidate is from satisfying every hard constraint (0 when it does).
     pub violation: f64,
 }
 
@@ -94,6 +103,7 @@ impl Evaluation {
         }
     }
 
+    /// Infinite cost and violation: loses every comparison.
     #[must_use]
     pub const fn worst() -> Self {
         Self {
@@ -102,6 +112,7 @@ impl Evaluation {
         }
     }
 
+    /// Whether the candidate satisfies every hard constraint (zero violation).
     #[must_use]
     pub fn feasible(&self) -> bool {
         self.violation == 0.0
@@ -152,6 +163,7 @@ pub trait Problem: Sync {
         fill_uniform(self.bounds(), rng, out);
     }
 
+    /// The number of decision variables.
     fn dimension(&self) -> usize {
         self.bounds().len()
     }

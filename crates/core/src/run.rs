@@ -20,18 +20,26 @@ use crate::world::World;
 /// What to run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RunRequest {
+    /// Optimizer, encoding and initialisation.
     pub method: Method,
+    /// The optimizer's parameters.
     pub params: OptimizerParams,
+    /// When to stop.
     pub budget: Budget,
+    /// Seed of the run's random generator.
     pub seed: u64,
 }
 
 /// What a run produced.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct RunResult {
+    /// The method that ran, as requested.
     pub method: Method,
+    /// The seed it ran from, as requested.
     pub seed: u64,
+    /// The optimizer's result: best point, evaluations, termination and trace.
     pub outcome: Outcome,
+    /// The best point decoded into paths.
     pub plan: Plan,
     /// Full assessment of the best plan, with its violations.
     pub assessment: Assessment,

@@ -185,6 +185,7 @@ impl TimedPath {
 /// Every UAV's timed path and the mission horizon.
 #[derive(Debug, Clone)]
 pub struct TimedPlan {
+    /// One timed path per UAV, in fleet order.
     pub paths: Vec<TimedPath>,
     /// The plan's pace ([`Plan::pace`]).
     pub pace: f64,
@@ -230,6 +231,7 @@ impl FlownSource {
 }
 
 impl TimedPlan {
+    /// Geometry and schedule of `plan` in `world` ([`TimedPlan::fill`] on a new value).
     #[must_use]
     pub fn new(world: &World, plan: &Plan) -> Self {
         let mut t = Self::default();

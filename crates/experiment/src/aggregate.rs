@@ -13,34 +13,54 @@ use crate::store::{
     RUNS_FILE,
 };
 
+/// Why the folders of a sharded experiment cannot be merged.
 #[derive(Debug, Error)]
 pub enum AggregateError {
+    /// No folder was given.
     #[error("aggregate: no folder given")]
     NoFolders,
+    /// A folder's files could not be read, or its records are not runs of its experiment.
     #[error(transparent)]
     Store(#[from] StoreError),
+    /// A folder's `experiment.json` differs from the first folder's.
     #[error("{other}: a different experiment from {first}: {what}")]
     Different {
+        /// The first folder given, whose experiment the others must match.
         first: PathBuf,
+        /// The folder whose experiment differs.
         other: PathBuf,
+        /// The first field that differs, with both values.
         what: String,
     },
+    /// A folder recorded another fingerprint for a scenario than an earlier folder did: its
+    /// runs were made on another version of the scenario or its terrain.
     #[error("{other}: scenario `{scenario}` is not the one its runs in {first} were made on (compare their scenarios.json)")]
     ScenarioDiffers {
+        /// The folder that recorded the scenario first.
         first: PathBuf,
+        /// The folder whose fingerprint differs.
         other: PathBuf,
+        /// The scenario's name.
         scenario: String,
     },
+    /// A run is recorded twice (in two folders, or twice in one).
     #[error("{path}: run {key} is also in {earlier}")]
     Duplicate {
+        /// The `runs.jsonl` holding the second record of the run.
         path: PathBuf,
+        /// The run, as `scenario/param_set/method#run`.
         key: String,
+        /// The `runs.jsonl` holding its first record.
         earlier: PathBuf,
     },
+    /// Some runs of the matrix are in none of the folders.
     #[error("{missing} of {total} runs are missing (first: {first}); run the remaining shards, or `bench --resume` in their folders")]
     Missing {
+        /// Number of runs missing.
         missing: usize,
+        /// Number of runs in the matrix.
         total: usize,
+        /// The first missing run in the matrix order, as `scenario/param_set/method#run`.
         first: String,
     },
 }

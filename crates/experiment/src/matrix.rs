@@ -19,7 +19,9 @@ use thiserror::Error;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ParamSet {
+    /// Name of the set, unique within an experiment (`paper` for the default set).
     pub name: String,
+    /// The optimizers' parameters (default: the paper's setting).
     #[serde(default)]
     pub params: OptimizerParams,
 }
@@ -46,6 +48,8 @@ pub struct ExperimentSpec {
     pub scenarios: Vec<String>,
     /// Methods by label: presets (`spso`) or `optimizer/encoding/init`.
     pub methods: Vec<Method>,
+    /// Parameter sets, each run with every scenario and method (default: one set `paper`
+    /// of the paper's parameters).
     #[serde(default = "default_param_sets")]
     pub param_sets: Vec<ParamSet>,
     /// The budget of every run under [`BudgetPolicy::Equal`] (default: 38,700 evaluations,
@@ -231,6 +235,7 @@ impl ExperimentSpec {
         )
     }
 
+    /// The parameter set named `name`, if the experiment has one.
     #[must_use]
     pub fn param_set(&self, name: &str) -> Option<&ParamSet> {
         self.param_sets.iter().find(|p| p.name == name)
@@ -240,9 +245,13 @@ impl ExperimentSpec {
 /// The identity of one run.
 #[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 pub struct RunKey {
+    /// The scenario, as the experiment names it (built-in name or file).
     pub scenario: String,
+    /// Name of the parameter set.
     pub param_set: String,
+    /// The method of the run (optimizer, encoding, initialisation).
     pub method: Method,
+    /// Run index, 0-based, within its (scenario, parameter set, method).
     pub run: usize,
 }
 
@@ -264,6 +273,7 @@ fn first_duplicate<T: Ord + std::fmt::Display>(items: impl Iterator<Item = T>) -
 pub struct Shard {
     /// 1-based.
     pub index: usize,
+    /// Number of shards the matrix is split into.
     pub count: usize,
 }
 
@@ -280,24 +290,32 @@ impl Shard {
         Ok(Self { index, count })
     }
 
+    /// Whether the run at `position` (0-based, in the matrix order) is in this shard.
     #[must_use]
     pub fn contains(&self, position: usize) -> bool {
         position % self.count == self.index - 1
     }
 }
 
+/// Why an experiment's matrix or a shard is refused.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum MatrixError {
+    /// Zero runs, or no scenario, method or parameter set.
     #[error("experiment: {0}")]
     Empty(String),
+    /// A scenario, method or parameter set name is listed twice.
     #[error("experiment: {0}")]
     Duplicate(String),
+    /// A parameter set's parameters fail their checks.
     #[error("experiment: {0}")]
     Params(String),
+    /// The matrix holds more than [`MAX_MATRIX_RUNS`] runs.
     #[error("experiment: {0}")]
     TooLarge(String),
+    /// A budget limit (iterations, evaluations or time) is 0.
     #[error("experiment: {0}")]
     Budget(String),
+    /// A `--shard` that is not `K/N` with 1 <= K <= N.
     #[error("--shard: {0}")]
     Shard(String),
 }

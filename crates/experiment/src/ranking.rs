@@ -24,8 +24,11 @@ use crate::summary::ScenarioSummary;
 /// [`SuiteRanking::methods`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct InstanceScores {
+    /// The instance's scenario.
     pub scenario: String,
+    /// Each method's feasibility ratio, percent.
     pub fr_percent: Vec<f64>,
+    /// Each method's median cost per UAV over all its runs (+inf when undefined).
     #[serde(with = "crate::stats::json_f64::vec")]
     pub median_cost: Vec<f64>,
     /// 1 = best on this instance; ties share their mean rank.
@@ -35,8 +38,11 @@ pub struct InstanceScores {
 /// The methods of one parameter set ranked over the instances that ran them all.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SuiteRanking {
+    /// Name of the parameter set.
     pub param_set: String,
+    /// The methods ranked, in the order of every per-method list here.
     pub methods: Vec<Method>,
+    /// The instances used as blocks: those where every method was run.
     pub instances: Vec<InstanceScores>,
     /// Scenarios of this parameter set that lack a run of some method.
     pub left_out: Vec<String>,

@@ -15,17 +15,26 @@ use crate::matrix::RunKey;
 /// as `null` (JSON has no infinity) and read back as +inf.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RunRecord {
+    /// The scenario, as the experiment names it.
     pub scenario: String,
+    /// Name of the parameter set.
     pub param_set: String,
     /// The method's label (a preset name, or `optimizer/encoding/init`).
     pub method: Method,
     /// The method's three parts, spelled out.
     pub optimizer: OptimizerKind,
+    /// The method's encoding.
     pub encoding: EncodingKind,
+    /// The method's initialisation.
     pub init: InitKind,
+    /// Run index, 0-based, within its (scenario, parameter set, method).
     pub run: usize,
+    /// The experiment's master seed.
     pub master_seed: u64,
+    /// The run's seed: from the master seed, scenario, parameter set and run index, the
+    /// same for every method ([`crate::matrix`]).
     pub seed: u64,
+    /// The parameters of the run's parameter set.
     pub params: OptimizerParams,
     /// Total cost of the best plan (penalty included).
     #[serde(with = "finite_or_null")]
@@ -41,14 +50,19 @@ pub struct RunRecord {
     /// before profiles existed).
     #[serde(default)]
     pub profile: FeasibilityProfile,
+    /// Whether the best plan has no hard violation under `profile`.
     pub feasible: bool,
     /// Number of hard violations of each kind in the best plan.
     pub violations: BTreeMap<String, usize>,
     /// Number of soft violations (cost only, under the `paper` profile) of each kind.
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub soft_violations: BTreeMap<String, usize>,
+    /// Evaluations spent, initialisation included.
     pub evaluations: u64,
+    /// Iterations after initialisation (the last may have been cut short by the budget).
     pub iterations: usize,
+    /// Wall time of the optimisation (assessment excluded), seconds; varies between
+    /// executions.
     pub seconds: f64,
     /// Best cost per UAV after initialisation and after each iteration (past
     /// `TRACE_CAP` iterations, every s-th: `swarmplan_core::optim::thinned`).
@@ -71,6 +85,7 @@ pub struct RunRecord {
 }
 
 impl RunRecord {
+    /// The run's identity in the matrix.
     #[must_use]
     pub fn key(&self) -> RunKey {
         RunKey {

@@ -21,20 +21,33 @@ use crate::record::RunRecord;
 use crate::store::{check_fingerprints, FolderLock, RecordWriter, StoreError};
 use crate::workers;
 
+/// Why an experiment did not run to its end.
 #[derive(Debug, Error)]
 pub enum RunnerError {
+    /// The experiment's matrix is refused.
     #[error(transparent)]
     Matrix(#[from] MatrixError),
+    /// A scenario (or the experiment's terrain) could not be loaded or built.
     #[error(transparent)]
     Scenario(#[from] ScenarioError),
+    /// The folder could not be opened, checked or written.
     #[error(transparent)]
     Store(#[from] StoreError),
+    /// The pool of worker threads could not be built.
     #[error("cannot start {threads} worker threads: {message}")]
-    Pool { threads: usize, message: String },
+    Pool {
+        /// Number of threads asked for.
+        threads: usize,
+        /// The thread pool's error.
+        message: String,
+    },
     /// The options' cancel flag was raised: the runs recorded stay, the rest were not run
     /// (or stopped, and not recorded).
     #[error("interrupted: {recorded} runs of this call were recorded; resume continues")]
-    Cancelled { recorded: usize },
+    Cancelled {
+        /// Runs this call recorded before it stopped.
+        recorded: usize,
+    },
 }
 
 /// How to run.

@@ -20,45 +20,97 @@ use thiserror::Error;
 use crate::matrix::{BudgetPolicy, ExperimentSpec, RunKey};
 use crate::record::RunRecord;
 
+/// The file of an experiment folder that describes its matrix ([`ExperimentSpec`]).
 pub const SPEC_FILE: &str = "experiment.json";
+/// The file of an experiment folder that holds its records, one line per finished run.
 pub const RUNS_FILE: &str = "runs.jsonl";
 
+/// Why an experiment folder cannot be read, written or used.
 #[derive(Debug, Error)]
 pub enum StoreError {
+    /// A file or folder could not be read, written, created or locked.
     #[error("{path}: {source}")]
     Io {
+        /// The file or folder.
         path: PathBuf,
+        /// The system's error.
         source: std::io::Error,
     },
+    /// A line of `runs.jsonl` does not parse as a run record.
     #[error("{path}: line {line}: not a run record: {message}")]
     BadRecord {
+        /// The `runs.jsonl` file.
         path: PathBuf,
+        /// Line number, 1-based.
         line: usize,
+        /// The parser's error.
         message: String,
     },
+    /// `experiment.json` (or `builds.json`, `scenarios.json`) does not parse.
     #[error("{path}: not an experiment description: {message}")]
-    BadSpec { path: PathBuf, message: String },
+    BadSpec {
+        /// The file.
+        path: PathBuf,
+        /// The parser's error.
+        message: String,
+    },
+    /// The folder's `experiment.json` describes another experiment than the one asked for.
     #[error("{dir}: holds results of a different experiment ({what}); use another --out, or the same flags to --resume")]
-    Mismatch { dir: PathBuf, what: String },
+    Mismatch {
+        /// The experiment folder.
+        dir: PathBuf,
+        /// The first field that differs, with both values.
+        what: String,
+    },
+    /// Another bench holds the folder's lock ([`LOCK_FILE`]).
     #[error("{dir}: another `swarmplan bench` is writing its records there now (it holds {dir}/{LOCK_FILE}); wait for it to finish, or use another --out")]
-    Busy { dir: PathBuf },
+    Busy {
+        /// The experiment folder.
+        dir: PathBuf,
+    },
+    /// The folder already holds run records and no resume was asked for.
     #[error("{dir}: already holds {count} run records; pass --resume to continue them, or choose another --out")]
-    NotEmpty { dir: PathBuf, count: usize },
+    NotEmpty {
+        /// The experiment folder.
+        dir: PathBuf,
+        /// Number of records it holds.
+        count: usize,
+    },
+    /// The folder holds a plan (`plan.json`).
     #[error("{dir}: holds a plan (plan.json); a bench needs its own folder")]
-    HoldsPlan { dir: PathBuf },
+    HoldsPlan {
+        /// The folder.
+        dir: PathBuf,
+    },
+    /// Two records of `runs.jsonl` share a run identity.
     #[error("{path}: run {key} appears twice")]
-    Duplicate { path: PathBuf, key: String },
+    Duplicate {
+        /// The `runs.jsonl` file.
+        path: PathBuf,
+        /// The run, as `scenario/param_set/method#run`.
+        key: String,
+    },
+    /// A record is not a run of the folder's experiment: another master seed, or a run
+    /// outside its matrix.
     #[error("{path}: run {key} is not a run of this folder's experiment ({why})")]
     Foreign {
+        /// The `runs.jsonl` file.
         path: PathBuf,
+        /// The run, as `scenario/param_set/method#run`.
         key: String,
+        /// How it differs from the experiment's runs.
         why: String,
     },
+    /// A scenario's fingerprint is not the one the folder recorded for its runs.
     #[error("{dir}: scenario `{scenario}` has changed since its runs there were recorded (fingerprint {then} there, {now} now); restore it, or use another --out")]
     ScenarioChanged {
+        /// The experiment folder.
         dir: PathBuf,
+        /// The scenario's name.
         scenario: String,
+        /// The fingerprint recorded in the folder.
         then: String,
+        /// The scenario's fingerprint now.
         now: String,
     },
 }

@@ -32,12 +32,19 @@ use crate::stats::{
 /// One method (with one parameter set) on one scenario.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct GroupSummary {
+    /// The method's label (a preset name, or `optimizer/encoding/init`).
     pub method: Method,
+    /// The method's optimizer.
     pub optimizer: OptimizerKind,
+    /// The method's encoding.
     pub encoding: EncodingKind,
+    /// The method's initialisation.
     pub init: InitKind,
+    /// Name of the parameter set.
     pub param_set: String,
+    /// Number of runs recorded.
     pub runs: usize,
+    /// Number of feasible runs.
     pub feasible: usize,
     /// Feasibility ratio, percent.
     pub fr_percent: f64,
@@ -48,6 +55,7 @@ pub struct GroupSummary {
     pub cost: Option<Summary>,
     /// Cost per UAV over feasible runs only.
     pub cost_feasible: Option<Summary>,
+    /// Evaluations spent per run, mean.
     pub mean_evaluations: f64,
     /// Median, over the feasible runs that record it, of the evaluations spent when the
     /// best plan first became feasible (`plan --until-feasible` would stop there).
@@ -69,6 +77,7 @@ pub const NEAR_MISS_VIOLATIONS: usize = 2;
 pub struct Versus {
     /// Mann-Whitney U of this method's costs against the reference's.
     pub rank_sum_u: f64,
+    /// Two-sided p-value of the rank-sum test.
     pub rank_sum_p: f64,
     /// Exact (small samples without ties) or normal approximation.
     pub rank_sum_method: RankSumMethod,
@@ -81,9 +90,13 @@ pub struct Versus {
 /// Everything about one scenario and parameter set.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ScenarioSummary {
+    /// The scenario, as the experiment names it.
     pub scenario: String,
+    /// Name of the parameter set.
     pub param_set: String,
+    /// The method the others are tested against ([`reference_method`]), if it was run here.
     pub reference: Option<Method>,
+    /// One per method, sorted by method.
     pub groups: Vec<GroupSummary>,
     /// Ranks the methods within blocks (run indices with a common seed).
     pub friedman: Option<FriedmanTest>,
@@ -93,13 +106,17 @@ pub struct ScenarioSummary {
     pub friedman_note: String,
 }
 
+/// The summary of an experiment's records (written as `summary.json`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ExperimentSummary {
+    /// The experiment's master seed.
     pub master_seed: u64,
+    /// Number of run records summarised.
     pub records: usize,
     /// The feasibility profiles of the records (one, unless folders were mixed).
     #[serde(default)]
     pub profiles: Vec<FeasibilityProfile>,
+    /// One per (scenario, parameter set), sorted by scenario, then parameter set.
     pub scenarios: Vec<ScenarioSummary>,
     /// Across the instances of a suite, per parameter set (none for a single scenario).
     #[serde(default)]

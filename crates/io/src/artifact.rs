@@ -24,40 +24,74 @@ use thiserror::Error;
 /// Version of the `run.json` layout; readers refuse other versions.
 pub const RUN_ARTIFACT_VERSION: u32 = 1;
 
+/// Why a `run.json` could not be read; every variant names the file.
 #[derive(Debug, Error)]
 pub enum ArtifactError {
+    /// The file could not be read.
     #[error("{path}: cannot read: {source}")]
     Read {
+        /// The file.
         path: String,
+        /// The I/O error.
         source: std::io::Error,
     },
+    /// The file is not JSON, or not the layout of a run artifact.
     #[error("{path}: not a run artifact: {message}")]
-    Parse { path: String, message: String },
+    Parse {
+        /// The file.
+        path: String,
+        /// What the JSON parser said.
+        message: String,
+    },
+    /// The file has a whole-number version other than [`RUN_ARTIFACT_VERSION`].
     #[error("{path}: version {found}, this build reads version {RUN_ARTIFACT_VERSION}")]
-    Version { path: String, found: u32 },
+    Version {
+        /// The file.
+        path: String,
+        /// The version it has (`u32::MAX` if larger).
+        found: u32,
+    },
+    /// The file has no `version` field.
     #[error("{path}: no `version` field: not a run.json of swarmplan `plan` (or one from before run.json had versions; plan again to write one)")]
-    NoVersion { path: String },
+    NoVersion {
+        /// The file.
+        path: String,
+    },
+    /// The file's `version` is not a whole number.
     #[error("{path}: `version` is {found}, expected a whole number (this build reads version {RUN_ARTIFACT_VERSION})")]
-    BadVersion { path: String, found: String },
+    BadVersion {
+        /// The file.
+        path: String,
+        /// The `version` value as JSON text.
+        found: String,
+    },
 }
 
 /// One UAV in the report.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct UavSummary {
+    /// Weighted sum of this UAV's cost terms (no penalty).
     #[serde(with = "json_f64")]
     pub cost: f64,
+    /// Path length, m.
     #[serde(with = "json_f64")]
     pub length_m: f64,
+    /// Constant flight speed, m/s.
     #[serde(with = "json_f64")]
     pub speed_mps: f64,
+    /// Arrival time at the goal, s.
     #[serde(with = "json_f64")]
     pub arrival_s: f64,
+    /// Energy used over the flight, J.
     #[serde(with = "json_f64")]
     pub energy_j: f64,
+    /// Energy used over battery capacity.
     #[serde(with = "json_f64")]
     pub battery_ratio: f64,
+    /// Minimum clearance above terrain, m.
     #[serde(with = "json_f64")]
     pub min_clearance_m: f64,
+    /// Time out of communication contact, s.
     #[serde(with = "json_f64")]
     pub outage_s: f64,
 }
@@ -66,8 +100,10 @@ pub struct UavSummary {
 /// `penalty`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CostSummary {
+    /// Penalised total cost (weighted terms plus penalty; +inf if not finite).
     #[serde(with = "json_f64")]
     pub total: f64,
+    /// Total cost divided by the number of UAVs, as the paper's tables report it.
     #[serde(with = "json_f64")]
     pub per_uav: f64,
     /// Weighted term totals; a non-finite one (SPSO's infinite collision cost) is written as
@@ -79,18 +115,24 @@ pub struct CostSummary {
 /// The assessment of a plan as `evaluate --json` prints it and `run.json` stores it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct AssessmentReport {
+    /// True when no hard constraint is violated (`violation` is 0).
     pub feasible: bool,
     /// The feasibility profile: which violations decide `feasible`.
     #[serde(default)]
     pub profile: swarmplan_core::feasibility::FeasibilityProfile,
+    /// Measure of hard violation: 0 iff feasible.
     #[serde(with = "json_f64")]
     pub violation: f64,
+    /// Cost of the plan.
     pub cost: CostSummary,
+    /// One summary per UAV, in the scenario's order.
     pub uavs: Vec<UavSummary>,
+    /// Every violation found, hard and soft (empty if the assessment did not list them).
     pub violations: Vec<Violation>,
 }
 
 impl AssessmentReport {
+    /// The report of an assessment (its violation list, if it has one).
     #[must_use]
     pub fn of(a: &Assessment) -> Self {
         let mut terms: BTreeMap<String, f64> = a
@@ -130,8 +172,11 @@ impl AssessmentReport {
 /// The files a `plan` folder holds.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct ArtifactFiles {
+    /// Path of the plan (`plan.json`).
     pub plan: String,
+    /// Path of the convergence trace (`convergence.csv`).
     pub convergence: String,
+    /// Paths of the exported flight files (`plan --export`); empty (and not written) when none.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub exports: Vec<String>,
 }
@@ -139,26 +184,38 @@ pub struct ArtifactFiles {
 /// `run.json`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RunArtifact {
+    /// Layout version, [`RUN_ARTIFACT_VERSION`].
     pub version: u32,
+    /// Name of the scenario planned.
     pub scenario: String,
     /// [`swarmplan_core::world::terrain::Terrain::fingerprint`] of the terrain planned on.
     pub terrain_fingerprint: String,
     /// The method's label, then its three parts spelled out.
     pub method: Method,
+    /// The method's optimizer.
     pub optimizer: OptimizerKind,
+    /// The method's encoding of a plan.
     pub encoding: EncodingKind,
+    /// The method's initialisation.
     pub init: InitKind,
+    /// Seed of the run (of the attempt whose plan was kept).
     pub seed: u64,
+    /// The budget the run was given.
     pub budget: Budget,
+    /// The optimizer parameters the run used.
     pub params: OptimizerParams,
+    /// Evaluations spent, initialisation included.
     pub evaluations: u64,
+    /// Steps taken after initialisation.
     pub iterations: usize,
     /// Why the search stopped (`time-limit`: not reproducible from the seed alone).
     pub termination: Termination,
     /// Wall time of the optimisation, seconds.
     #[serde(with = "json_f64")]
     pub seconds: f64,
+    /// The assessment of the plan.
     pub report: AssessmentReport,
+    /// The other files written next to `run.json`.
     pub files: ArtifactFiles,
     /// Every attempt of `plan --attempts K` (K > 1), in order; the plan is the one of
     /// `seed`. Empty (and not written) for a single run.
@@ -167,6 +224,8 @@ pub struct RunArtifact {
 }
 
 impl RunArtifact {
+    /// The artifact of one run: the method, seed and counts of `result`, its assessment, and
+    /// the budget, parameters and files it was run with (no attempts).
     #[must_use]
     pub fn new(
         world: &World,

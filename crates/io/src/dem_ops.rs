@@ -11,37 +11,63 @@
 use swarmplan_core::world::terrain::{Terrain, TerrainError};
 use thiserror::Error;
 
+/// Why [`crop`] or [`resample`] could not make the terrain asked for.
 #[derive(Debug, Error)]
 pub enum DemOpsError {
+    /// A crop range is not finite or not increasing.
     #[error("crop: {axis} range [{lo}, {hi}] must be finite and increasing")]
-    BadRange { axis: char, lo: f64, hi: f64 },
+    BadRange {
+        /// The axis, `x` or `y`.
+        axis: char,
+        /// Lower end of the range, m.
+        lo: f64,
+        /// Upper end of the range, m.
+        hi: f64,
+    },
+    /// The crop region overlaps the terrain by less than one cell on some axis.
     #[error(
         "crop: region x [{x0}, {x1}], y [{y0}, {y1}] does not overlap the terrain \
          x [{tx0}, {tx1}], y [{ty0}, {ty1}] by at least one cell"
     )]
     Outside {
+        /// West edge of the region, m.
         x0: f64,
+        /// East edge of the region, m.
         x1: f64,
+        /// South edge of the region, m.
         y0: f64,
+        /// North edge of the region, m.
         y1: f64,
+        /// West edge of the terrain, m.
         tx0: f64,
+        /// East edge of the terrain, m.
         tx1: f64,
+        /// South edge of the terrain, m.
         ty0: f64,
+        /// North edge of the terrain, m.
         ty1: f64,
     },
+    /// The resampling cell size (m) is not positive and finite.
     #[error("resample: cell size must be positive and finite, got {0}")]
     BadCell(f64),
+    /// The resampling cell size gives fewer than 2 x 2 or more than 100 million nodes.
     #[error(
         "resample: a {cell} m cell gives {nx} x {ny} nodes over {w} x {h} m; expected at \
          least 2 x 2 and at most 100 million nodes"
     )]
     BadSize {
+        /// The cell size asked for, m.
         cell: f64,
+        /// Nodes along x it would give.
         nx: usize,
+        /// Nodes along y it would give.
         ny: usize,
+        /// East-west (x) extent of the terrain, m.
         w: f64,
+        /// North-south (y) extent of the terrain, m.
         h: f64,
     },
+    /// The new height grid is not a valid terrain.
     #[error(transparent)]
     Terrain(#[from] TerrainError),
 }

@@ -34,8 +34,11 @@ pub const START_SPACING_M: f64 = 40.0;
 /// What to generate.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GenerateRequest {
+    /// Seed of every random draw (the K of the name `gen-sK-...`).
     pub seed: u64,
+    /// Number of UAVs (1 to 1000).
     pub uavs: usize,
+    /// Number of threats (at most 500).
     pub threats: usize,
     /// All UAVs start at one point (the paper's setting); otherwise on a grid 40 m apart.
     pub shared_start: bool,
@@ -146,25 +149,37 @@ impl GenerateRequest {
     }
 }
 
+/// Why a scenario could not be generated.
 #[derive(Debug, Error)]
 pub enum GenerateError {
+    /// The number of UAVs is 0 or more than 1000.
     #[error("--uavs: expected 1 to 1000, got {0}")]
     Uavs(usize),
+    /// More than 500 threats were asked for.
     #[error("--threats: expected at most 500, got {0}")]
     Threats(usize),
+    /// More than 20 interference windows were asked for.
     #[error("--comm-windows: expected at most 20, got {0}")]
     Windows(usize),
+    /// Not every threat asked for could be placed within the allowed random draws.
     #[error("--threats {threats}: placed only {placed} in {THREAT_DRAWS_PER_THREAT} random draws per threat on the {width:.0} x {height:.0} m map, disjoint and {CLEAR_M} m clear of the starts and the goal (how many fit depends on the draws); ask for fewer")]
     Crowded {
+        /// Threats asked for.
         threats: usize,
+        /// Threats placed.
         placed: usize,
+        /// East-west (x) extent of the map, m.
         width: f64,
+        /// North-south (y) extent of the map, m.
         height: f64,
     },
+    /// The grid of spread starts does not fit on the map.
     #[error("--uavs {0}: a grid of starts 40 m apart does not fit on the map; use --shared-start")]
     StartsDoNotFit(usize),
+    /// The DEM given for the terrain could not be read.
     #[error(transparent)]
     Dem(#[from] DemError),
+    /// The template scenario could not be loaded, or the generated scenario is invalid.
     #[error(transparent)]
     Template(#[from] ScenarioError),
 }

@@ -31,23 +31,44 @@ use crate::geo::{GeoError, Geodetic, LocalFrame};
 /// Distance within which imported end points are snapped onto the start and goal, metres.
 pub const SNAP_M: f64 = 0.01;
 
+/// Why an exported mission could not be imported as a plan; every variant names the file.
 #[derive(Debug, Error)]
 pub enum ImportError {
+    /// The file could not be read.
     #[error("{path}: cannot read: {source}")]
     Read {
+        /// The file.
         path: String,
+        /// The I/O error.
         source: std::io::Error,
     },
+    /// A line of a CSV export is malformed.
     #[error("{path}: line {line}: {message}")]
     Line {
+        /// The file.
         path: String,
+        /// The line (1-based).
         line: usize,
+        /// What is wrong.
         message: String,
     },
+    /// The file is not a mission export, or its plan does not fit the scenario (UAV count,
+    /// pace, delays, waypoints).
     #[error("{path}: {message}")]
-    Invalid { path: String, message: String },
+    Invalid {
+        /// The file.
+        path: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// A waypoint could not be converted into the local frame.
     #[error("{path}: {source}")]
-    Geo { path: String, source: GeoError },
+    Geo {
+        /// The file, with the UAV and waypoint.
+        path: String,
+        /// The conversion error.
+        source: GeoError,
+    },
 }
 
 /// One imported waypoint before conversion: latitude, longitude, altitude AMSL, and the

@@ -61,19 +61,40 @@ struct Instance {
     map: [usize; 2],
 }
 
+/// Why an outside instance could not be turned into a scenario.
 #[derive(Debug, Error)]
 pub enum OutsideError {
+    /// The instance file could not be read.
     #[error("{}: cannot read: {source} (the outside instances are in ../shared/data/outside beside the checkout, or in $SWARMPLAN_SHARED/data/outside)", .path.display())]
     Read {
+        /// The instance file.
         path: PathBuf,
+        /// The I/O error.
         source: std::io::Error,
     },
+    /// The instance file is not the JSON the outside generator writes.
     #[error("{}: not an outside instance: {message}", .path.display())]
-    Parse { path: PathBuf, message: String },
+    Parse {
+        /// The instance file.
+        path: PathBuf,
+        /// What the JSON parser said.
+        message: String,
+    },
+    /// Neither `outside-K.asc.gz` nor `outside-K.asc` is beside the instance file.
     #[error("{}: no terrain beside it (looked for {})", .path.display(), .looked.display())]
-    NoTerrain { path: PathBuf, looked: PathBuf },
+    NoTerrain {
+        /// The instance file.
+        path: PathBuf,
+        /// The terrain file named in the message (the `.asc.gz` one).
+        looked: PathBuf,
+    },
+    /// The number of UAVs asked for is 0 or more than 1000.
     #[error("{name}: expected 1 to 1000 UAVs")]
-    Uavs { name: String },
+    Uavs {
+        /// The scenario name.
+        name: String,
+    },
+    /// The template scenario could not be loaded, or the built scenario is invalid.
     #[error(transparent)]
     Template(#[from] Box<ScenarioError>),
 }

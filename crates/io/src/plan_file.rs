@@ -22,26 +22,47 @@ use swarmplan_core::world::spec::MAX_DELAY_LIMIT;
 use swarmplan_core::world::World;
 use thiserror::Error;
 
+/// Why a plan file could not be read into a plan for a world; every variant names the file.
 #[derive(Debug, Error)]
 pub enum PlanFileError {
+    /// The file could not be read.
     #[error("{path}: cannot read: {source}")]
     Read {
+        /// The file.
         path: String,
+        /// The I/O error.
         source: std::io::Error,
     },
+    /// The file is not JSON, or not the layout of a plan file.
     #[error("{path}: not a plan file: {message}")]
-    Parse { path: String, message: String },
+    Parse {
+        /// The file.
+        path: String,
+        /// What is wrong, with where.
+        message: String,
+    },
+    /// The plan was made for another scenario or terrain, or its pace or a delay is not one
+    /// the scenario allows (only under [`Provenance::MustMatch`]).
     #[error("{path}: {what}: made for {recorded}, not for {current}; `evaluate --allow-other-terrain` assesses it anyway")]
     Provenance {
+        /// The file.
         path: String,
+        /// What differs: `scenario`, `terrain`, `pace` or `delay`.
         what: &'static str,
+        /// What the file records.
         recorded: String,
+        /// What the world has.
         current: String,
     },
+    /// A field's value cannot be evaluated in the world (wrong UAV count, a waypoint
+    /// outside the map or off the start or goal, a bad pace or delay).
     #[error("{path}: {field}: {message}")]
     Invalid {
+        /// The file.
         path: String,
+        /// The field, e.g. `uavs[0].waypoints[3]`.
         field: String,
+        /// What was expected, and what was found.
         message: String,
     },
 }
@@ -100,6 +121,7 @@ fn is_zero(x: &f64) -> bool {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlanFile {
+    /// Name of the scenario it was made for (absent in hand-written plans).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scenario: Option<String>,
     /// [`swarmplan_core::world::terrain::Terrain::fingerprint`] of the terrain it was made on.
@@ -111,6 +133,7 @@ pub struct PlanFile {
         skip_serializing_if = "swarmplan_core::plan::is_unit_pace"
     )]
     pub pace: f64,
+    /// One entry per UAV, in the scenario's order.
     pub uavs: Vec<UavEntry>,
 }
 
@@ -308,7 +331,9 @@ pub fn parse_plan(
 /// whole) and what was expected.
 #[derive(Debug, Clone, PartialEq)]
 pub struct InadmissiblePath {
+    /// Index of the waypoint at fault; None when it is the path as a whole (too long).
     pub waypoint: Option<usize>,
+    /// What was expected, and what was found.
     pub message: String,
 }
 

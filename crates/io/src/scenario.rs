@@ -35,28 +35,70 @@ pub const BUILTIN: [(&str, &str); 5] = [
     ("tiny", include_str!("../../../scenarios/tiny.toml")),
 ];
 
+/// Why a scenario could not be loaded or built into a world.
 #[derive(Debug, Error)]
 pub enum ScenarioError {
+    /// The name is no built-in, generated or outside scenario, and no file has that path.
     #[error("no built-in scenario and no file named `{name}`; built-in scenarios: {}; generated ones are named gen-sSEED-uUAVS-tTHREATS[-wWINDOWS][-shared][-pace][-delay], outside benchmark instances outside-K[-uUAVS][-delay]", builtin_names().join(", "))]
-    Unknown { name: String },
+    Unknown {
+        /// The name or path given.
+        name: String,
+    },
+    /// The scenario file could not be read.
     #[error("{path}: cannot read: {source}")]
     Read {
+        /// The file.
         path: PathBuf,
+        /// The I/O error.
         source: std::io::Error,
     },
+    /// The TOML is malformed or not a scenario, or its `[geo] origin` is unusable.
     #[error("{origin}: {message}")]
-    Parse { origin: String, message: String },
+    Parse {
+        /// `builtin:NAME` or the file path.
+        origin: String,
+        /// What the TOML parser or the origin check said.
+        message: String,
+    },
+    /// The scenario fails validation, or no world can be built from it.
     #[error("{origin}: {source}")]
-    Invalid { origin: String, source: WorldError },
+    Invalid {
+        /// Where the scenario came from: `builtin:NAME`, a file path, a generated scenario's
+        /// name or an outside instance file.
+        origin: String,
+        /// What is wrong.
+        source: WorldError,
+    },
+    /// The procedural terrain could not be made from `terrain.procedural`.
     #[error("{origin}: terrain.procedural: {message}")]
-    Procedural { origin: String, message: String },
+    Procedural {
+        /// `builtin:NAME` or the file path.
+        origin: String,
+        /// What the terrain generator said.
+        message: String,
+    },
+    /// The scenario's own terrain file could not be read.
     #[error("{origin}: terrain: {source}")]
-    Terrain { origin: String, source: DemError },
+    Terrain {
+        /// `builtin:NAME` or the file path.
+        origin: String,
+        /// The DEM reader's error.
+        source: DemError,
+    },
     /// The DEM given with `--terrain` (not the scenario's own source) could not be read.
     #[error("--terrain {source}")]
-    TerrainOverride { source: DemError },
+    TerrainOverride {
+        /// The DEM reader's error.
+        source: DemError,
+    },
+    /// A scenario named as generated or outside could not be made.
     #[error("scenario `{name}`: {message}")]
-    Generated { name: String, message: String },
+    Generated {
+        /// The scenario name.
+        name: String,
+        /// Why it could not be made.
+        message: String,
+    },
 }
 
 /// Names of the built-in scenarios.
@@ -77,6 +119,7 @@ pub fn is_scenario_name(name: &str) -> bool {
 /// A scenario spec with where it came from.
 #[derive(Debug, Clone)]
 pub struct LoadedSpec {
+    /// The parsed and validated scenario.
     pub spec: ScenarioSpec,
     /// `builtin:NAME` or the file path, for messages.
     pub origin: String,

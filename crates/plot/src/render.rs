@@ -25,8 +25,11 @@ pub const MIN_SIZE: (u32, u32) = (400, 300);
 /// `top_view(&world, &plan, title, "out/top")` writes `out/top.png` and `out/top.svg`.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Target {
+    /// Path of the files without their extension.
     pub stem: PathBuf,
+    /// Width, pixels (1200).
     pub width: u32,
+    /// Height, pixels (900).
     pub height: u32,
 }
 
@@ -104,34 +107,58 @@ impl From<String> for Target {
 /// The files a figure was written to.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Written {
+    /// Path of the PNG.
     pub png: PathBuf,
+    /// Path of the SVG.
     pub svg: PathBuf,
 }
 
 /// Why a figure could not be written; every variant names the file.
 #[derive(Debug, Error)]
 pub enum PlotError {
+    /// The folder of the files could not be created.
     #[error("{}: cannot create the folder: {source}", .path.display())]
     Folder {
+        /// The figure's PNG.
         path: PathBuf,
+        /// The error creating the folder.
         source: std::io::Error,
     },
+    /// The font could not be registered or drawing failed.
     #[error("{}: cannot draw: {message}", .path.display())]
-    Draw { path: PathBuf, message: String },
+    Draw {
+        /// The file being drawn.
+        path: PathBuf,
+        /// What went wrong, from the font loader or the backend.
+        message: String,
+    },
+    /// A drawn file could not be written.
     #[error("{}: cannot write: {source}", .path.display())]
     Write {
+        /// The file that could not be written.
         path: PathBuf,
+        /// The error writing it.
         source: std::io::Error,
     },
+    /// The data leave nothing to draw (no finite cost, no runs, ...).
     #[error("{}: nothing to draw: {what}", .path.display())]
-    NoData { path: PathBuf, what: String },
+    NoData {
+        /// The figure's PNG.
+        path: PathBuf,
+        /// What is missing.
+        what: String,
+    },
+    /// The target is smaller than [`MIN_SIZE`].
     #[error(
         "{}: {width} x {height} px is too small; figures need at least {} x {} px",
         .path.display(), MIN_SIZE.0, MIN_SIZE.1
     )]
     TooSmall {
+        /// The figure's PNG.
         path: PathBuf,
+        /// Width asked for, pixels.
         width: u32,
+        /// Height asked for, pixels.
         height: u32,
     },
 }

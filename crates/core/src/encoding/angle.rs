@@ -9,6 +9,7 @@ use super::{Frame, PathEncoding};
 use crate::plan::Plan;
 use crate::problem::Bound;
 
+/// The angle encoding of a frame: one phase per coordinate of each free waypoint.
 #[derive(Debug, Clone)]
 pub struct Angle {
     frame: Frame,
@@ -16,6 +17,7 @@ pub struct Angle {
 }
 
 impl Angle {
+    /// Phases in [-pi/2, pi/2], or with `periodic` on the whole circle [-pi, pi), wrapping.
     #[must_use]
     pub fn new(frame: Frame, periodic: bool) -> Self {
         let b = if periodic {

@@ -5,6 +5,7 @@ use super::{Frame, PathEncoding};
 use crate::plan::Plan;
 use crate::problem::Bound;
 
+/// The Cartesian encoding of a frame: free waypoints' coordinates as they are.
 #[derive(Debug, Clone)]
 pub struct Cartesian {
     frame: Frame,
@@ -12,6 +13,7 @@ pub struct Cartesian {
 }
 
 impl Cartesian {
+    /// Each coordinate bounded by the frame's map box and altitude band.
     #[must_use]
     pub fn new(frame: Frame) -> Self {
         let n = frame.n;

@@ -65,8 +65,10 @@ pub const LINE_SPREAD: f64 = 0.25;
 pub const FAN_SPREAD: f64 = 0.3;
 
 impl InitKind {
+    /// Every initialisation.
     pub const ALL: [Self; 4] = [Self::Uniform, Self::Line, Self::Corridor, Self::Fan];
 
+    /// The name used on the command line and in records (`uniform`, ...).
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {

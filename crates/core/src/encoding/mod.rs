@@ -60,8 +60,10 @@ pub enum EncodingKind {
 }
 
 impl EncodingKind {
+    /// Every encoding.
     pub const ALL: [EncodingKind; 3] = [Self::Spherical, Self::Cartesian, Self::Angle];
 
+    /// The name used on the command line and in records (`spherical`, ...).
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
@@ -97,14 +99,19 @@ pub struct Frame {
     pub starts: Vec<DVec3>,
     /// Goal, [x, y, z_agl].
     pub goal: DVec3,
+    /// x range of free waypoints, m.
     pub x: [f64; 2],
+    /// y range of free waypoints, m.
     pub y: [f64; 2],
+    /// Height band of free waypoints above ground, m.
     pub z: [f64; 2],
     /// Free waypoints per UAV.
     pub n: usize,
 }
 
 impl Frame {
+    /// The frame of `world`: its UAVs' starts, the goal at departure, the map box and the
+    /// number of free waypoints.
     #[must_use]
     pub fn of(world: &World) -> Self {
         let m = &world.spec().map;
@@ -118,6 +125,7 @@ impl Frame {
         }
     }
 
+    /// Length of a decision vector: 3 n values per UAV.
     #[must_use]
     pub fn dimension(&self) -> usize {
         3 * self.n * self.starts.len()

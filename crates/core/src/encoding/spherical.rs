@@ -27,6 +27,8 @@ pub enum AngleConvention {
     Spso,
 }
 
+/// The spherical motion encoding of a frame: each free waypoint a move (r, psi, phi) from the
+/// previous one.
 #[derive(Debug, Clone)]
 pub struct Spherical {
     frame: Frame,
@@ -35,6 +37,7 @@ pub struct Spherical {
 }
 
 impl Spherical {
+    /// Heading sectors centred on each UAV's start-goal bearing, under `convention`.
     #[must_use]
     pub fn new(frame: Frame, convention: AngleConvention) -> Self {
         Self::along_guides(frame, convention, &[])

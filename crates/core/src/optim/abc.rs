@@ -45,11 +45,13 @@ pub struct AbcParams {
 }
 
 impl AbcParams {
+    /// The defaults (one place, used by `Default` and serde).
     pub const DEFAULT: Self = Self {
         population: 50,
         limit: 100,
     };
 
+    /// Checks the colony size; the error names the field.
     pub fn validate(&self) -> Result<(), ParamsError> {
         check(
             super::params::POPULATION_RANGE.contains(&self.population),
@@ -114,6 +116,7 @@ pub struct Abc {
 }
 
 impl Abc {
+    /// ABC with `params`; the colony is drawn at initialisation.
     #[must_use]
     pub fn new(params: AbcParams) -> Self {
         Self {
@@ -130,6 +133,7 @@ impl Abc {
         }
     }
 
+    /// The parameters it runs with.
     #[must_use]
     pub fn params(&self) -> &AbcParams {
         &self.params

@@ -96,6 +96,7 @@ impl Covariance {
 }
 
 impl CmaesParams {
+    /// The defaults (one place, used by `Default` and serde).
     pub const DEFAULT: Self = Self {
         sigma: 0.3,
         population: 0,
@@ -103,6 +104,7 @@ impl CmaesParams {
         covariance: Covariance::Auto,
     };
 
+    /// Checks `sigma` and `population`; the error names the first bad one.
     pub fn validate(&self) -> Result<(), ParamsError> {
         check(
             self.sigma.is_finite() && self.sigma > 0.0 && self.sigma <= 1.0,
@@ -280,6 +282,7 @@ pub struct Cmaes {
 }
 
 impl Cmaes {
+    /// CMA-ES with `params`; the strategy is sized to the problem at initialisation.
     #[must_use]
     pub fn new(params: CmaesParams) -> Self {
         Self {

@@ -23,7 +23,9 @@ pub struct ExemplarStats {
 /// An exemplar and how it was obtained.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Exemplar {
+    /// The exemplar: pbest with the accepted dimensions taken from the guide.
     pub x: Vec<f64>,
+    /// Its evaluation, the evaluations spent and the dimensions accepted.
     pub stats: ExemplarStats,
 }
 

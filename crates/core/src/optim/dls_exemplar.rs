@@ -42,11 +42,13 @@ pub struct DlsExemplarParams {
 }
 
 impl DlsExemplarParams {
+    /// The defaults (one place, used by `Default` and serde).
     pub const DEFAULT: Self = Self {
         pso: PsoParams::DEFAULT,
         neighbour_fraction: 0.2,
     };
 
+    /// Checks the PSO section and `neighbour_fraction`; the error names the first bad field.
     pub fn validate(&self) -> Result<(), ParamsError> {
         self.pso.validate().map_err(|e| e.within("pso"))?;
         check(
@@ -92,6 +94,7 @@ pub struct DlsExemplar {
 }
 
 impl DlsExemplar {
+    /// DLS-SMPSO in exemplar mode with `params`; the swarm is drawn at initialisation.
     #[must_use]
     pub fn new(params: DlsExemplarParams) -> Self {
         Self {
@@ -103,6 +106,7 @@ impl DlsExemplar {
         }
     }
 
+    /// The parameters it runs with.
     #[must_use]
     pub fn params(&self) -> &DlsExemplarParams {
         &self.params

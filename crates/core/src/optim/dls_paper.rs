@@ -60,6 +60,7 @@ pub struct DlsPaperParams {
 }
 
 impl DlsPaperParams {
+    /// The defaults (one place, used by `Default` and serde).
     pub const DEFAULT: Self = Self {
         pso: PsoParams::DEFAULT,
         lambda: 0.5,
@@ -67,6 +68,7 @@ impl DlsPaperParams {
         max_passes_per_iteration: 1,
     };
 
+    /// Checks the PSO section and `lambda`; the error names the first bad field.
     pub fn validate(&self) -> Result<(), ParamsError> {
         self.pso.validate().map_err(|e| e.within("pso"))?;
         check(
@@ -116,6 +118,7 @@ pub struct DlsPaper {
 }
 
 impl DlsPaper {
+    /// DLS-SMPSO in paper mode with `params`; the swarm is drawn at initialisation.
     #[must_use]
     pub fn new(params: DlsPaperParams) -> Self {
         Self {
@@ -129,6 +132,7 @@ impl DlsPaper {
         }
     }
 
+    /// The parameters it runs with.
     #[must_use]
     pub fn params(&self) -> &DlsPaperParams {
         &self.params

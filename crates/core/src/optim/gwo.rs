@@ -36,8 +36,10 @@ pub struct GwoParams {
 }
 
 impl GwoParams {
+    /// The defaults (one place, used by `Default` and serde).
     pub const DEFAULT: Self = Self { population: 50 };
 
+    /// Checks the pack size; the error names the field.
     pub fn validate(&self) -> Result<(), ParamsError> {
         check(
             super::params::POPULATION_RANGE.contains(&self.population),
@@ -125,6 +127,7 @@ pub struct Gwo {
 }
 
 impl Gwo {
+    /// GWO with `params`; the pack is drawn at initialisation.
     #[must_use]
     pub fn new(params: GwoParams) -> Self {
         Self {
@@ -136,6 +139,7 @@ impl Gwo {
         }
     }
 
+    /// The parameters it runs with.
     #[must_use]
     pub fn params(&self) -> &GwoParams {
         &self.params

@@ -59,6 +59,7 @@ pub struct LshadeParams {
 }
 
 impl LshadeParams {
+    /// The defaults (one place, used by `Default` and serde).
     pub const DEFAULT: Self = Self {
         population_per_dimension: 18.0,
         max_population: 100,
@@ -68,6 +69,7 @@ impl LshadeParams {
         p_best: 0.11,
     };
 
+    /// Checks every field; the error names the first bad one.
     pub fn validate(&self) -> Result<(), ParamsError> {
         check(
             self.population_per_dimension.is_finite() && self.population_per_dimension > 0.0,
@@ -154,6 +156,7 @@ pub struct Lshade {
 }
 
 impl Lshade {
+    /// L-SHADE with `params`; the population is sized and drawn at initialisation.
     #[must_use]
     pub fn new(params: LshadeParams) -> Self {
         Self {

@@ -34,8 +34,11 @@ pub const POPULATION_EXPECTED: &str = "a whole number in [4, 100000]";
 #[derive(Debug, Error, Clone, PartialEq)]
 #[error("{field}: expected {expected}, got {got}")]
 pub struct ParamsError {
+    /// Path of the parameter, sections joined by dots.
     pub field: String,
+    /// What values it accepts, in words (`a number in (0, 1]`).
     pub expected: String,
+    /// The value it was given, as displayed.
     pub got: String,
 }
 

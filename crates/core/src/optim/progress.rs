@@ -20,8 +20,11 @@ pub enum ProgressUnit {
 /// limit that is nearer to being reached.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Progress {
+    /// Amount spent so far.
     pub done: u64,
+    /// Amount the limit allows (at least 1).
     pub total: u64,
+    /// Whether steps or evaluations are counted.
     pub unit: ProgressUnit,
 }
 

@@ -73,6 +73,7 @@ pub struct PsoParams {
 }
 
 impl PsoParams {
+    /// The defaults (one place, used by `Default` and serde).
     pub const DEFAULT: Self = Self {
         population: 50,
         inertia: 1.0,
@@ -350,6 +351,7 @@ pub struct Pso {
 }
 
 impl Pso {
+    /// PSO with `params`; the swarm is drawn at initialisation.
     #[must_use]
     pub fn new(params: PsoParams) -> Self {
         Self {
@@ -357,6 +359,7 @@ impl Pso {
         }
     }
 
+    /// The parameters it runs with.
     #[must_use]
     pub fn params(&self) -> &PsoParams {
         &self.swarm.params

@@ -40,12 +40,14 @@ pub struct QpsoParams {
 }
 
 impl QpsoParams {
+    /// The defaults (one place, used by `Default` and serde).
     pub const DEFAULT: Self = Self {
         population: 50,
         beta_start: 1.0,
         beta_end: 0.5,
     };
 
+    /// Checks every field; the error names the first bad one.
     pub fn validate(&self) -> Result<(), ParamsError> {
         check(
             super::params::POPULATION_RANGE.contains(&self.population),
@@ -111,6 +113,7 @@ pub struct Qpso {
 }
 
 impl Qpso {
+    /// QPSO with `params`; the swarm is drawn at initialisation.
     #[must_use]
     pub fn new(params: QpsoParams) -> Self {
         Self {
@@ -126,6 +129,7 @@ impl Qpso {
         }
     }
 
+    /// The parameters it runs with.
     #[must_use]
     pub fn params(&self) -> &QpsoParams {
         &self.params

@@ -45,6 +45,7 @@ pub struct Budget {
 }
 
 impl Budget {
+    /// [`DEFAULT_ITERATIONS`] iterations, no other limit.
     pub const DEFAULT: Self = Self::new(Some(DEFAULT_ITERATIONS), None);
 
     /// A budget of at most `iterations` and at most `evaluations` (`None`: no such limit).
@@ -111,10 +112,13 @@ impl Default for Budget {
 /// The state of a run after initialisation (iteration 0) or after a step.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct IterationRecord {
+    /// 0 after initialisation, then the number of steps taken.
     pub iteration: usize,
     /// Evaluations spent so far, initialisation included.
     pub evaluations: u64,
+    /// Cost of the optimizer's best point so far.
     pub best_cost: f64,
+    /// Violation of the optimizer's best point so far (0 when feasible).
     pub best_violation: f64,
 }
 
@@ -122,7 +126,9 @@ pub struct IterationRecord {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Termination {
+    /// The iteration limit was reached.
     MaxIterations,
+    /// The evaluation limit was reached.
     MaxEvaluations,
     /// The wall-clock limit was reached (the run is not reproducible).
     TimeLimit,
@@ -140,12 +146,15 @@ pub enum Termination {
 /// Result of one run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Outcome {
+    /// The best point found.
     pub best_x: Vec<f64>,
+    /// Its cost and violation.
     pub best: Evaluation,
     /// Evaluations spent, initialisation included; never more than the budget.
     pub evaluations: u64,
     /// Steps taken after initialisation (the last may have been cut short by the budget).
     pub iterations: usize,
+    /// Why the run stopped.
     pub termination: Termination,
     /// One record after initialisation and one per step; past
     /// [`TRACE_CAP`](super::thinned::TRACE_CAP) steps, every s-th (s a power of two), the

@@ -19,14 +19,24 @@ use crate::world::World;
 /// A plan that is not of the shape an encoding decodes to.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum ShapeError {
+    /// The plan's number of UAVs differs from the scenario's.
     #[error("the plan has {got} UAVs; the scenario has {expected}")]
-    Uavs { expected: usize, got: usize },
+    Uavs {
+        /// UAVs in the scenario.
+        expected: usize,
+        /// UAVs in the plan.
+        got: usize,
+    },
+    /// A UAV's number of waypoints differs from what the encoding decodes to.
     #[error(
         "UAV {uav} has {got} waypoints (start and goal included); the scenario's encoding has {expected} (planning.waypoints free ones between start and goal)"
     )]
     Waypoints {
+        /// Index of the UAV.
         uav: usize,
+        /// Waypoints the encoding gives it, start and goal included.
         expected: usize,
+        /// Waypoints the plan gives it, start and goal included.
         got: usize,
     },
 }
@@ -56,6 +66,8 @@ thread_local! {
 }
 
 impl<'w> PlanningProblem<'w> {
+    /// The problem of `world` in encoding `kind` from initialisation `init` (searching the
+    /// corridors when `init` is `corridor`); a free pace or free delays add their variables.
     #[must_use]
     pub fn new(world: &'w World, kind: EncodingKind, init: InitKind) -> Self {
         let corridors = if init == InitKind::Corridor {
@@ -102,6 +114,7 @@ impl<'w> PlanningProblem<'w> {
         }
     }
 
+    /// How its starting points are drawn.
     #[must_use]
     pub fn init(&self) -> InitKind {
         self.init
@@ -153,16 +166,19 @@ impl<'w> PlanningProblem<'w> {
         out.copy_from_slice(&encoded[block * size..(block + 1) * size]);
     }
 
+    /// The world it plans in.
     #[must_use]
     pub fn world(&self) -> &World {
         self.world
     }
 
+    /// The encoding its decision vectors are in.
     #[must_use]
     pub fn encoding(&self) -> EncodingKind {
         self.kind
     }
 
+    /// The plan that `x` decodes to.
     #[must_use]
     pub fn decode(&self, x: &[f64]) -> Plan {
         self.encoding.decode(x)

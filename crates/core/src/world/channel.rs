@@ -18,6 +18,8 @@ use crate::rng::rng_from_seed;
 /// built-in scenarios last about 70 s.
 pub const CHANNEL_HORIZON_S: f64 = 3600.0;
 
+/// The radio channel of a scenario: shadowing, interference windows and line-of-sight
+/// settings, from which each link's range at a time follows.
 #[derive(Debug, Clone)]
 pub struct Channel {
     range: f64,
@@ -34,6 +36,8 @@ pub struct Channel {
 }
 
 impl Channel {
+    /// Generates the channel of `spec`: its shadowing series over [`CHANNEL_HORIZON_S`], from
+    /// the spec's seed.
     #[must_use]
     pub fn new(spec: &CommSpec) -> Self {
         let step = spec.time_step;
@@ -69,14 +73,17 @@ impl Channel {
         }
     }
 
+    /// Nominal range R0, before shadowing and interference, m.
     #[must_use]
     pub fn nominal_range(&self) -> f64 {
         self.range
     }
+    /// Time step of the shadowing series and of the connectivity check, s.
     #[must_use]
     pub fn step(&self) -> f64 {
         self.step
     }
+    /// The scheduled interference windows, as the spec gives them.
     #[must_use]
     pub fn interference(&self) -> &[InterferenceSpec] {
         &self.interference

@@ -30,6 +30,8 @@ pub const HORIZON_BINS: usize = 4096;
 /// Entries of a bin summarised by one entry of the coarse table.
 const BLOCK: usize = 16;
 
+/// The horizon table of one ground antenna: per azimuth bin and distance, the largest
+/// terrain slope seen from it.
 #[derive(Debug, Clone)]
 pub struct Horizon {
     origin: DVec3,

@@ -33,6 +33,7 @@ pub const DEPARTURE: f64 = 0.0;
 /// A ground radio node (ground control station, UGV0, extra relays), absolute position.
 #[derive(Debug, Clone)]
 pub struct GroundNode {
+    /// `GCS`, `UGV0`, or the extra node's name from the spec.
     pub name: String,
     /// Antenna position, absolute altitude.
     pub position: DVec3,
@@ -40,32 +41,49 @@ pub struct GroundNode {
     pub horizon: Option<horizon::Horizon>,
 }
 
+/// Why a world could not be built from a spec and a terrain.
 #[derive(Debug, Error)]
 pub enum WorldError {
+    /// The spec failed validation.
     #[error(transparent)]
     Spec(#[from] SpecError),
+    /// A UAV's start lies outside the map box.
     #[error("uavs[{uav}].start: ({x}, {y}) is outside the map box x {bx:?}, y {by:?}")]
     StartOutside {
+        /// Index of the UAV.
         uav: usize,
+        /// Start x, m.
         x: f64,
+        /// Start y, m.
         y: f64,
+        /// The map box's x range, m.
         bx: [f64; 2],
+        /// The map box's y range, m.
         by: [f64; 2],
     },
+    /// The map box reaches more than one terrain cell beyond the terrain's extent.
     #[error("map: the box x {bx:?}, y {by:?} reaches beyond the terrain, which covers x [{}, {}], y [{}, {}] (the edge heights would be stretched over the rest); shrink the map box or use a terrain that covers it", .extent.0, .extent.2, .extent.1, .extent.3)]
     MapBeyondTerrain {
+        /// The map box's x range, m.
         bx: [f64; 2],
+        /// The map box's y range, m.
         by: [f64; 2],
         /// (x_min, y_min, x_max, y_max) of the terrain.
         extent: (f64, f64, f64, f64),
     },
+    /// The goal (UGV0) lies outside the map box.
     #[error("goal.position: ({x}, {y}) is outside the map box x {bx:?}, y {by:?}")]
     GoalOutside {
+        /// Goal x, m.
         x: f64,
+        /// Goal y, m.
         y: f64,
+        /// The map box's x range, m.
         bx: [f64; 2],
+        /// The map box's y range, m.
         by: [f64; 2],
     },
+    /// An extra ground node lies outside the map box.
     #[error("communication.ground_nodes[{}] (`{}`).position: ({}, {}) is outside the map box x {:?}, y {:?}; positions are metres in the map's frame, like the starts, not geographic coordinates", .0.index, .0.name, .0.x, .0.y, .0.bx, .0.by)]
     GroundNodeOutside(Box<NodeOutside>),
 }
@@ -73,11 +91,17 @@ pub enum WorldError {
 /// An extra ground node placed outside the map box (boxed: the error stays small).
 #[derive(Debug)]
 pub struct NodeOutside {
+    /// Its index in `communication.ground_nodes`.
     pub index: usize,
+    /// Its name.
     pub name: String,
+    /// Its x position, m.
     pub x: f64,
+    /// Its y position, m.
     pub y: f64,
+    /// The map box's x range, m.
     pub bx: [f64; 2],
+    /// The map box's y range, m.
     pub by: [f64; 2],
 }
 
@@ -263,6 +287,7 @@ impl World {
         })
     }
 
+    /// The number of UAVs in the fleet.
     #[must_use]
     pub fn uav_count(&self) -> usize {
         self.spec.uavs.len()

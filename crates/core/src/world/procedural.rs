@@ -120,19 +120,47 @@ impl Default for ProceduralParams {
 /// What is wrong with a [`ProceduralParams`].
 #[derive(Debug, Clone, Error, PartialEq)]
 pub enum ProceduralError {
+    /// `width`, `height` or `cell` is zero, negative or not finite.
     #[error("procedural terrain: {field} must be positive and finite, got {value}")]
-    NotPositive { field: &'static str, value: f64 },
+    NotPositive {
+        /// Name of the field.
+        field: &'static str,
+        /// Its value.
+        value: f64,
+    },
+    /// `min_height` or `max_height` is NaN or infinite.
     #[error("procedural terrain: {field} must be finite, got {value}")]
-    NotFinite { field: &'static str, value: f64 },
+    NotFinite {
+        /// Name of the field.
+        field: &'static str,
+        /// Its value.
+        value: f64,
+    },
+    /// `max_height` is not above `min_height`.
     #[error("procedural terrain: max_height ({max}) must be greater than min_height ({min})")]
-    EmptyHeightRange { min: f64, max: f64 },
+    EmptyHeightRange {
+        /// `min_height`, m.
+        min: f64,
+        /// `max_height`, m.
+        max: f64,
+    },
+    /// More hills than [`MAX_HILLS`].
     #[error("procedural terrain: hills must be at most {MAX_HILLS}, got {hills}")]
-    TooManyHills { hills: usize },
+    TooManyHills {
+        /// Hills asked for.
+        hills: usize,
+    },
+    /// The grid would have more nodes than [`MAX_NODES`].
     #[error(
         "procedural terrain: cell {cell} m gives about {nodes:.0} grid nodes, \
          more than {MAX_NODES}; use a larger cell"
     )]
-    TooManyNodes { cell: f64, nodes: f64 },
+    TooManyNodes {
+        /// Grid spacing, m.
+        cell: f64,
+        /// Estimated number of grid nodes.
+        nodes: f64,
+    },
 }
 
 /// Generates the terrain, validating the parameters first.

@@ -28,28 +28,36 @@ pub struct ScenarioSpec {
     /// One line for humans.
     #[serde(default)]
     pub description: String,
+    /// Where the height grid comes from and how it is read (procedural by default).
     #[serde(default)]
     pub terrain: TerrainSpec,
     /// Geodetic origin of the local frame, for exports (optional; a georeferenced GeoTIFF
     /// also gives one).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub geo: Option<GeoSpec>,
+    /// The box waypoints live in and the altitude band above ground.
     #[serde(default)]
     pub map: MapSpec,
+    /// Threat cylinders (none).
     #[serde(default)]
     pub threats: Vec<Threat>,
     /// UGV0: where every UAV lands.
     pub goal: GoalSpec,
     /// One entry per UAV.
     pub uavs: Vec<UavSpec>,
+    /// The radio channel and what counts as in contact.
     #[serde(default)]
     pub communication: CommSpec,
+    /// Eq. 5's weights and the battery's power model.
     #[serde(default)]
     pub energy: EnergySpec,
+    /// Which objective is minimised and the weights of its terms.
     #[serde(default)]
     pub objective: ObjectiveSpec,
+    /// Schedule, separation, zones, pace and departure delays.
     #[serde(default)]
     pub timing: TimingSpec,
+    /// Free waypoints per UAV, default seed and feasibility profile.
     #[serde(default)]
     pub planning: PlanningSpec,
 }
@@ -91,11 +99,14 @@ impl Default for TerrainSpec {
     }
 }
 
+/// How a terrain file's grid is placed in the local frame.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "kebab-case")]
 pub enum TerrainFrame {
+    /// One cell = 1 m, x = column + 1, y = file row + 1 (SPSO's convention; default).
     #[default]
     SpsoPixels,
+    /// Cell size and orientation from the file, origin at its south-west node.
     Georeferenced,
 }
 
@@ -214,6 +225,7 @@ pub enum CommRequirement {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GroundNodeSpec {
+    /// Name of the node, as reports and error messages give it.
     pub name: String,
     /// [x, y], metres.
     #[serde(deserialize_with = "exactly")]
@@ -243,6 +255,7 @@ pub struct InterferenceSpec {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct CommSpec {
+    /// Which connectivity counts as in contact (`relay`).
     pub requirement: CommRequirement,
     /// Nominal range R0, metres.
     pub range: f64,
@@ -264,7 +277,9 @@ pub struct CommSpec {
     pub ground_station: bool,
     /// Cost of each UAV-second out of contact, metres-equivalent (10), added to the gap.
     pub outage_base_cost: f64,
+    /// Ground nodes besides UGV0 and the ground station (none).
     pub ground_nodes: Vec<GroundNodeSpec>,
+    /// Scheduled interference windows (none).
     pub interference: Vec<InterferenceSpec>,
 }
 
@@ -325,6 +340,7 @@ pub enum ObjectivePreset {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ObjectiveSpec {
+    /// Which objective is minimised (`paper`).
     pub preset: ObjectivePreset,
     /// b1: SPSO path length weight (5).
     pub length: f64,
@@ -380,9 +396,12 @@ pub enum TimingPolicy {
     Cruise,
 }
 
+/// How the fleet is timed: schedule, separation, take-off and landing zones, pace and
+/// departure delays.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct TimingSpec {
+    /// How UAVs are scheduled along their paths (`common-arrival`).
     pub policy: TimingPolicy,
     /// Minimum distance between two UAVs at the same time, metres (10).
     pub separation: f64,

@@ -22,16 +22,45 @@ pub enum Sampling {
     NearestMatlab,
 }
 
+/// Why a height grid was refused.
 #[derive(Debug, Error, PartialEq)]
 pub enum TerrainError {
+    /// The grid has fewer than 2 nodes along x or y.
     #[error("terrain grid must be at least 2 x 2 nodes, got {nx} x {ny}")]
-    TooSmall { nx: usize, ny: usize },
+    TooSmall {
+        /// Nodes along x.
+        nx: usize,
+        /// Nodes along y.
+        ny: usize,
+    },
+    /// The number of heights is not `nx * ny`.
     #[error("terrain grid has {got} heights, expected {nx} x {ny} = {}", nx * ny)]
-    WrongLength { nx: usize, ny: usize, got: usize },
+    WrongLength {
+        /// Nodes along x.
+        nx: usize,
+        /// Nodes along y.
+        ny: usize,
+        /// Heights given.
+        got: usize,
+    },
+    /// A cell size is zero, negative or not finite.
     #[error("terrain cell size must be positive and finite, got dx = {dx}, dy = {dy}")]
-    BadCellSize { dx: f64, dy: f64 },
+    BadCellSize {
+        /// Cell size along x, m.
+        dx: f64,
+        /// Cell size along y, m.
+        dy: f64,
+    },
+    /// A height is NaN or infinite.
     #[error("terrain height at node (column {i}, row {j}) is not finite: {value}")]
-    NotFinite { i: usize, j: usize, value: f64 },
+    NotFinite {
+        /// Column of the node.
+        i: usize,
+        /// Row of the node.
+        j: usize,
+        /// The height found there.
+        value: f64,
+    },
 }
 
 /// A validated height grid.
@@ -122,18 +151,22 @@ impl Terrain {
         .expect("a 2 x 2 flat grid with positive size is valid")
     }
 
+    /// Nodes along x and along y.
     #[must_use]
     pub fn size(&self) -> (usize, usize) {
         (self.nx, self.ny)
     }
+    /// Position (x0, y0) of node (0, 0), m.
     #[must_use]
     pub fn origin(&self) -> (f64, f64) {
         (self.x0, self.y0)
     }
+    /// Node spacing (dx, dy), m.
     #[must_use]
     pub fn cell(&self) -> (f64, f64) {
         (self.dx, self.dy)
     }
+    /// How heights between nodes are obtained.
     #[must_use]
     pub fn sampling(&self) -> Sampling {
         self.sampling
@@ -148,10 +181,12 @@ impl Terrain {
             self.y0 + (self.ny - 1) as f64 * self.dy,
         )
     }
+    /// Lowest node height, m.
     #[must_use]
     pub fn min_height(&self) -> f64 {
         self.min
     }
+    /// Highest node height, m.
     #[must_use]
     pub fn max_height(&self) -> f64 {
         self.max
@@ -182,6 +217,7 @@ impl Terrain {
         format!("{:016x}", h.finish())
     }
 
+    /// Node heights, row-major (`heights[j * nx + i]`), m.
     #[must_use]
     pub fn heights(&self) -> &[f64] {
         &self.heights

@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
+/// A threat: a vertical cylinder of unbounded height.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Threat {

@@ -16,7 +16,9 @@ use super::validate::number;
 /// One reason no plan can be feasible: the field at fault and why.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Unreachable {
+    /// Path of the field at fault (`uavs[2].start`).
     pub field: String,
+    /// Why it rules out every feasible plan, for humans.
     pub reason: String,
 }
 

@@ -23,8 +23,11 @@ use super::spec::{CommRequirement, ObjectivePreset, ScenarioSpec};
 #[derive(Debug, Error, Clone, PartialEq)]
 #[error("{field}: {expected}, got {got}")]
 pub struct SpecError {
+    /// Path of the field (`uavs[2].speed`).
     pub field: String,
+    /// What values it accepts, in words.
     pub expected: String,
+    /// The value it was given, as displayed.
     pub got: String,
 }
 

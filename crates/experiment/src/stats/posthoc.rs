@@ -24,7 +24,9 @@ use super::json_f64;
 /// One pair (a, b) of methods, by their column in the mean ranks.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PairwiseRankTest {
+    /// Column of the first method.
     pub a: usize,
+    /// Column of the second method (`a < b`).
     pub b: usize,
     /// (R_a - R_b) / SE: negative when a ranks better (lower) than b.
     #[serde(with = "json_f64")]

@@ -57,6 +57,7 @@ pub enum RankSumMethod {
 }
 
 impl RankSumMethod {
+    /// `exact` or `normal`.
     #[must_use]
     pub const fn name(self) -> &'static str {
         match self {
@@ -80,6 +81,7 @@ pub struct RankSumTest {
     /// Two-sided p-value, in `[0, 1]`.
     #[serde(with = "json_f64")]
     pub p_value: f64,
+    /// Whether the p-value is exact or from the normal approximation.
     pub method: RankSumMethod,
 }
 

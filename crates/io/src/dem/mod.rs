@@ -71,23 +71,36 @@ impl DemOptions {
 /// The file format a DEM was read from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DemFormat {
+    /// GeoTIFF (`.tif`, `.tiff`).
     GeoTiff,
+    /// ESRI ASCII grid (`.asc`).
     EsriAscii,
 }
 
 /// How samples were stored in the file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SampleType {
+    /// 8-bit unsigned integers.
     U8,
+    /// 8-bit signed integers.
     I8,
+    /// 16-bit unsigned integers.
     U16,
+    /// 16-bit signed integers.
     I16,
+    /// 32-bit unsigned integers.
     U32,
+    /// 32-bit signed integers.
     I32,
+    /// 64-bit unsigned integers.
     U64,
+    /// 64-bit signed integers.
     I64,
+    /// 16-bit floats.
     F16,
+    /// 32-bit floats.
     F32,
+    /// 64-bit floats.
     F64,
     /// Decimal text (ESRI ASCII grid).
     Text,
@@ -103,7 +116,10 @@ pub enum Crs {
     Geographic(u16),
     /// No EPSG code: user-defined, absent (ESRI ASCII grids carry none), or geocentric.
     /// `model_type` is `GTModelTypeGeoKey` (1024) when present.
-    Unknown { model_type: Option<u16> },
+    Unknown {
+        /// `GTModelTypeGeoKey` (1: projected, 2: geographic, 3: geocentric), if present.
+        model_type: Option<u16>,
+    },
 }
 
 impl Crs {
@@ -120,7 +136,9 @@ impl Crs {
 /// A GeoTIFF tie point: raster (i, j, k) -> model (x, y, z).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TiePoint {
+    /// Raster position (i, j, k): column and row in pixels, k usually 0.
     pub raster: [f64; 3],
+    /// Model position (x, y, z) in CRS units.
     pub model: [f64; 3],
 }
 
@@ -135,6 +153,7 @@ pub struct GeoReference {
     pub south_west_node: (f64, f64),
     /// Cell size (x, y), positive, in CRS units (degrees for a geographic CRS).
     pub cell: (f64, f64),
+    /// The coordinate reference system the file names.
     pub crs: Crs,
     /// True when the EPSG code was derived from the projection (UTM zone) and datum keys
     /// because `ProjectedCSTypeGeoKey` was user-defined.
@@ -152,14 +171,19 @@ pub struct GeoReference {
 /// A DEM read from a file: the terrain in the requested frame plus the file's metadata.
 #[derive(Debug, Clone)]
 pub struct LoadedDem {
+    /// The heights as a terrain in the requested frame, nodata filled.
     pub terrain: Terrain,
+    /// The file read.
     pub path: PathBuf,
+    /// The file's format.
     pub format: DemFormat,
+    /// How the file stored its samples.
     pub sample_type: SampleType,
     /// The options the terrain was built with.
     pub options: DemOptions,
     /// Raster size: columns (x) and rows (y).
     pub columns: usize,
+    /// Raster rows (y).
     pub rows: usize,
     /// Georeferencing, if the file has any (ESRI ASCII grids always do, without a CRS).
     pub georef: Option<GeoReference>,

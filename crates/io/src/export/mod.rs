@@ -52,6 +52,7 @@ pub enum ExportFormat {
 }
 
 impl ExportFormat {
+    /// Every format, in the order `all` writes them.
     pub const ALL: [Self; 5] = [
         Self::QgcPlan,
         Self::Wpl,
@@ -60,6 +61,7 @@ impl ExportFormat {
         Self::Csv,
     ];
 
+    /// The name used on the command line (`qgc-plan`, `wpl`, `geojson`, `kml`, `csv`).
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
@@ -115,17 +117,25 @@ impl FromStr for ExportFormat {
     }
 }
 
+/// Why a mission could not be converted or written.
 #[derive(Debug, Error)]
 pub enum ExportError {
+    /// The output folder or a file in it could not be written.
     #[error("{}: cannot write: {source}", path.display())]
     Write {
+        /// The folder or file.
         path: PathBuf,
+        /// The I/O error.
         source: std::io::Error,
     },
+    /// A point could not be converted to WGS 84.
     #[error(transparent)]
     Geo(#[from] GeoError),
+    /// A format name is not one of the export formats.
     #[error("expected qgc-plan, wpl, geojson, kml, csv or all, got `{0}`")]
     Format(String),
+    /// The plan does not fit the scenario: wrong number of paths, fewer than 2 waypoints,
+    /// or a waypoint that is not finite.
     #[error("plan: {0}")]
     Plan(String),
 }
@@ -155,8 +165,11 @@ pub struct MissionPoint {
 pub struct FlownPoint {
     /// Plan coordinates [x, y, absolute altitude] in the local frame.
     pub local_abs: DVec3,
+    /// WGS 84 latitude, longitude; `alt_m` is the altitude AMSL.
     pub geo: Geodetic,
+    /// Height above ground, metres.
     pub alt_agl_m: f64,
+    /// When the UAV passes the point, seconds (on the clock of [`MissionPoint::time_s`]).
     pub time_s: f64,
     /// Whether the segment that ends here is a chord of an arc.
     pub on_arc: bool,
@@ -165,7 +178,9 @@ pub struct FlownPoint {
 /// One UAV's path.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MissionPath {
+    /// Index of the UAV in the scenario (N of `uavN.plan`).
     pub uav: usize,
+    /// The plan's waypoints, start to goal.
     pub points: Vec<MissionPoint>,
     /// Constant planned speed, m/s.
     pub speed_mps: f64,
@@ -188,9 +203,11 @@ pub struct MissionPath {
 /// A threat cylinder in WGS 84.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MissionThreat {
+    /// Index of the threat in the scenario.
     pub index: usize,
     /// Axis in plan coordinates, metres.
     pub x: f64,
+    /// Axis y in plan coordinates, metres.
     pub y: f64,
     /// Radius, metres.
     pub r: f64,
@@ -205,10 +222,13 @@ pub struct MissionThreat {
 /// A plan converted to WGS 84, ready for the writers.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Mission {
+    /// Name of the scenario.
     pub scenario: String,
     /// [`LocalFrame::describe`] of the frame used.
     pub frame: String,
+    /// One path per UAV, in the scenario's order.
     pub paths: Vec<MissionPath>,
+    /// The scenario's threats, in its order.
     pub threats: Vec<MissionThreat>,
     /// UGV0's position on the ground (altitude = ground AMSL).
     pub goal: Geodetic,

@@ -17,7 +17,9 @@ use serde::{Deserialize, Serialize};
 /// A reference ellipsoid: semi-major axis `a` (m) and flattening `f`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ellipsoid {
+    /// Semi-major (equatorial) axis, metres.
     pub a: f64,
+    /// Flattening (a - b) / a.
     pub f: f64,
 }
 
@@ -69,6 +71,7 @@ pub struct Geodetic {
 }
 
 impl Geodetic {
+    /// The position at `lat_deg`, `lon_deg` (degrees) and `alt_m` (metres).
     #[must_use]
     pub const fn new(lat_deg: f64, lon_deg: f64, alt_m: f64) -> Self {
         Self {
@@ -149,6 +152,7 @@ pub struct EnuFrame {
 }
 
 impl EnuFrame {
+    /// The ENU frame tangent to the WGS 84 ellipsoid at `origin`.
     #[must_use]
     pub fn new(origin: Geodetic) -> Self {
         let (sp, cp) = origin.lat_deg.to_radians().sin_cos();
@@ -162,6 +166,7 @@ impl EnuFrame {
         }
     }
 
+    /// The geodetic origin of the frame.
     #[must_use]
     pub fn origin(&self) -> Geodetic {
         self.origin

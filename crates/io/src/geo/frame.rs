@@ -32,6 +32,7 @@ impl TangentPlane {
         }
     }
 
+    /// The geodetic origin the plane is tangent at.
     #[must_use]
     pub fn origin(&self) -> Geodetic {
         self.enu.origin()
@@ -81,15 +82,20 @@ pub enum FrameKind {
     /// A projected DEM's grid: easting = e0 + x, northing = n0 + y (metres), where
     /// (e0, n0) is the DEM's south-west node.
     Projected {
+        /// The DEM's UTM / MGA zone.
         zone: UtmZone,
+        /// (e0, n0): easting and northing of the DEM's south-west node, metres.
         south_west: (f64, f64),
     },
     /// A geographic DEM's grid: longitude = lon0 + x / mx, latitude = lat0 + y / my, with
     /// (lon0, lat0) its south-west node and (mx, my) the metres per degree the DEM reader
     /// used (WGS 84 at the raster's centre latitude).
     Geographic {
+        /// The DEM's geographic CRS.
         crs: GeographicCrs,
+        /// (lon0, lat0): longitude and latitude of the DEM's south-west node, degrees.
         south_west: (f64, f64),
+        /// (mx, my): metres per degree of longitude and of latitude.
         metres_per_degree: (f64, f64),
     },
 }
@@ -212,6 +218,7 @@ impl LocalFrame {
         })
     }
 
+    /// What the frame maps through.
     #[must_use]
     pub fn kind(&self) -> &FrameKind {
         &self.kind

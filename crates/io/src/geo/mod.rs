@@ -46,45 +46,106 @@ pub use scenario::{
 /// was expected.
 #[derive(Debug, Error)]
 pub enum GeoError {
+    /// A latitude is not finite or outside [-90, 90] degrees.
     #[error("{what}: latitude must be a number in [-90, 90] degrees, got {value}")]
-    Latitude { what: String, value: f64 },
+    Latitude {
+        /// The input (flag, file or field).
+        what: String,
+        /// The latitude given, degrees.
+        value: f64,
+    },
+    /// A longitude is not finite or outside [-180, 180] degrees.
     #[error("{what}: longitude must be a number in [-180, 180] degrees, got {value}")]
-    Longitude { what: String, value: f64 },
+    Longitude {
+        /// The input (flag, file or field).
+        what: String,
+        /// The longitude given, degrees.
+        value: f64,
+    },
+    /// An altitude is not finite or outside [`MIN_ALTITUDE_M`, `MAX_ALTITUDE_M`].
     #[error("{what}: altitude must be a number of metres in [{}, {}] (Earth's surface and the airspace above it), got {value}", MIN_ALTITUDE_M, MAX_ALTITUDE_M)]
-    Altitude { what: String, value: f64 },
+    Altitude {
+        /// The input (flag, file or field).
+        what: String,
+        /// The altitude given, metres.
+        value: f64,
+    },
+    /// A tangent-plane origin lies within 0.001 degrees of a pole.
     #[error("{what}: a tangent-plane origin needs a latitude within 89.999 degrees of the equator (east and north are undefined at a pole, and ill-conditioned next to it), got {value}")]
-    Pole { what: String, value: f64 },
+    Pole {
+        /// The input (flag, file or field).
+        what: String,
+        /// The latitude given, degrees.
+        value: f64,
+    },
+    /// A value (e.g. a `LAT,LON` flag) is not written as expected.
     #[error("{what}: expected {expected}, got `{got}`")]
     Syntax {
+        /// The input (flag, file or field).
         what: String,
+        /// What was expected.
         expected: String,
+        /// The text given.
         got: String,
     },
+    /// A UTM / MGA projection could not be set up, or a point is outside its zone.
     #[error("{crs}: {message}")]
-    Projection { crs: String, message: String },
+    Projection {
+        /// Name of the projected CRS.
+        crs: String,
+        /// What failed, with the point.
+        message: String,
+    },
+    /// A point is more than 60 degrees of arc from a tangent plane's origin.
     #[error(
         "point at latitude {lat}, longitude {lon} is too far from the tangent plane at \
          ({lat0}, {lon0}) to map into the local frame (more than 60 degrees of arc)"
     )]
     TooFar {
+        /// Latitude of the point, degrees.
         lat: f64,
+        /// Longitude of the point, degrees.
         lon: f64,
+        /// Latitude of the plane's origin, degrees.
         lat0: f64,
+        /// Longitude of the plane's origin, degrees.
         lon0: f64,
     },
+    /// A DEM's georeferencing cannot give a frame (wrong DEM frame, no georeferencing, or an
+    /// unsupported CRS or unit).
     #[error("{path}: {message}")]
-    Dem { path: String, message: String },
+    Dem {
+        /// The DEM file.
+        path: String,
+        /// Why it gives no frame.
+        message: String,
+    },
+    /// A scenario's `[geo]` table is invalid (not raised in this crate: the scenario spec
+    /// validates that table itself).
     #[error("{origin}: geo: {message}")]
-    Spec { origin: String, message: String },
+    Spec {
+        /// The scenario's name or file.
+        origin: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// A scenario has neither a usable DEM frame nor a `[geo] origin`, and no origin was given.
     #[error(
         "scenario `{scenario}` has no geodetic origin{why}; give one with `[geo] origin = \
          [lat, lon, alt]` in the scenario file, a terrain GeoTIFF with a supported CRS \
          (WGS 84 / UTM, GDA94 or GDA2020 / MGA) in the `georeferenced` frame, or \
          `--origin LAT,LON[,ALT]`"
     )]
-    NoOrigin { scenario: String, why: String },
+    NoOrigin {
+        /// The scenario's name.
+        scenario: String,
+        /// Why its DEM gave no frame, as ` (reason)`.
+        why: String,
+    },
+    /// The scenario could not be loaded.
     #[error(transparent)]
     Scenario(#[from] crate::scenario::ScenarioError),
+    /// A DEM file could not be read.
     #[error(transparent)]
     Read(#[from] crate::dem::DemError),
 }

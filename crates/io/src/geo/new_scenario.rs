@@ -31,6 +31,7 @@ pub struct NewScenarioRequest<'a> {
     pub terrain_source: String,
     /// Start and goal latitude and longitude (altitudes ignored).
     pub start: Geodetic,
+    /// Goal latitude and longitude (altitude ignored).
     pub goal: Geodetic,
     /// Number of UAVs, >= 1.
     pub uavs: usize,
@@ -45,12 +46,15 @@ pub struct NewScenarioRequest<'a> {
 /// The result: the spec, its origin and where start and goal landed.
 #[derive(Debug, Clone)]
 pub struct NewScenario {
+    /// The scenario built.
     pub spec: ScenarioSpec,
     /// Geodetic position of local (0, 0) (the DEM's south-west node), altitude 0.
     pub origin: Geodetic,
+    /// The DEM's frame, which maps the scenario's plan coordinates to WGS 84.
     pub frame: LocalFrame,
     /// Local (x, y) of the start and the goal, metres.
     pub start_local: DVec2,
+    /// Local (x, y) of the goal, metres.
     pub goal_local: DVec2,
 }
 

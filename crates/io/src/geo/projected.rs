@@ -17,14 +17,20 @@ use super::GeoError;
 /// The datum of a supported CRS.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Datum {
+    /// World Geodetic System 1984.
     Wgs84,
+    /// Geocentric Datum of Australia 1994 (GRS 80).
     Gda94,
+    /// Geocentric Datum of Australia 2020 (GRS 80).
     Gda2020,
+    /// European Terrestrial Reference System 1989 (GRS 80).
     Etrs89,
+    /// North American Datum 1983 (GRS 80).
     Nad83,
 }
 
 impl Datum {
+    /// E.g. "WGS 84", "GDA94".
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
@@ -36,6 +42,7 @@ impl Datum {
         }
     }
 
+    /// The datum's ellipsoid: WGS 84, or GRS 80 for the others.
     #[must_use]
     pub fn ellipsoid(self) -> Ellipsoid {
         match self {
@@ -61,6 +68,7 @@ pub struct UtmZone {
     pub zone: u8,
     /// Southern hemisphere (false northing 10 000 km).
     pub south: bool,
+    /// Datum of the zone.
     pub datum: Datum,
 }
 
@@ -156,11 +164,14 @@ impl UtmZone {
 /// A supported geographic CRS (longitude, latitude in degrees).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct GeographicCrs {
+    /// The EPSG code it was made from.
     pub epsg: u16,
+    /// Its datum.
     pub datum: Datum,
 }
 
 impl GeographicCrs {
+    /// The CRS of a supported geographic EPSG code, or None.
     #[must_use]
     pub fn from_epsg(code: u16) -> Option<Self> {
         let datum = match code {
@@ -174,6 +185,7 @@ impl GeographicCrs {
         Some(Self { epsg: code, datum })
     }
 
+    /// E.g. "WGS 84 geographic (EPSG 4326)".
     #[must_use]
     pub fn name(&self) -> String {
         format!("{} geographic (EPSG {})", self.datum.name(), self.epsg)

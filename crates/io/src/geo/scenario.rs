@@ -25,6 +25,7 @@ pub enum FrameSource {
 }
 
 impl FrameSource {
+    /// The input in words, for messages (e.g. "the --origin flag").
     #[must_use]
     pub fn describe(self) -> &'static str {
         match self {

@@ -92,6 +92,7 @@ pub struct CoopParams {
 }
 
 impl CoopParams {
+    /// The defaults (one place, used by `Default` and serde).
     pub const DEFAULT: Self = Self {
         population: 10,
         block_iterations: 10,
@@ -114,6 +115,7 @@ impl CoopParams {
         aimed_nudges: 1.0,
     };
 
+    /// Checks every field that has limits; the error names the first bad one.
     pub fn validate(&self) -> Result<(), ParamsError> {
         check(
             crate::optim::params::POPULATION_RANGE.contains(&self.population),

@@ -72,6 +72,7 @@ impl<'a> Evaluator<'a> {
         self.bounds
     }
 
+    /// The number of decision variables.
     #[must_use]
     pub fn dimension(&self) -> usize {
         self.bounds.len()
