@@ -1,6 +1,10 @@
 //! The `swarmplan` command-line tool: plan cooperative UAV paths, evaluate plans, inspect
 //! scenarios. Errors are printed with their causes (`{:#}`) and exit with status 2.
 
+// clap turns doc comments into help text, where `[x]` is literal (`LAT,LON[,ALT]`,
+// `[[param_sets]]`), not a link.
+#![allow(rustdoc::broken_intra_doc_links)]
+
 mod commands;
 mod render;
 mod report;

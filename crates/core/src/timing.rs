@@ -37,7 +37,7 @@ use crate::world::World;
 pub struct TimedPath {
     /// Waypoints with absolute altitude (z + ground height).
     pub abs: Vec<DVec3>,
-    /// Cumulative 3-D arc length at each waypoint (cum[0] = 0).
+    /// Cumulative 3-D arc length at each waypoint (`cum[0]` = 0).
     pub cum: Vec<f64>,
     /// Total length L_i (metres).
     pub length: f64,

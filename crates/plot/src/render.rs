@@ -47,7 +47,7 @@ impl Target {
         }
     }
 
-    /// The same target at another size (at least [`MIN_SIZE`], checked when drawing).
+    /// The same target at another size (at least `MIN_SIZE`, checked when drawing).
     #[must_use]
     pub fn with_size(mut self, width: u32, height: u32) -> Self {
         self.width = width;
@@ -148,7 +148,7 @@ pub enum PlotError {
         /// What is missing.
         what: String,
     },
-    /// The target is smaller than [`MIN_SIZE`].
+    /// The target is smaller than `MIN_SIZE`.
     #[error(
         "{}: {width} x {height} px is too small; figures need at least {} x {} px",
         .path.display(), MIN_SIZE.0, MIN_SIZE.1

@@ -26,7 +26,9 @@ use crate::world::World;
 /// to the caller (+inf: no bound).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Cutoff {
+    /// The violation measure above which the plan is of no use (+inf: no bound).
     pub violation: f64,
+    /// The total cost above which the plan is of no use (+inf: no bound).
     pub cost: f64,
 }
 

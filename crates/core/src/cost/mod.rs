@@ -36,24 +36,32 @@ use crate::world::World;
 /// What a report says about one UAV.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct UavReport {
+    /// Each term's value before weighting, in its unit ([`TermId::unit`]).
     pub raw: Terms,
+    /// Each term's value times its weight in the scenario's `[objective]`.
     pub weighted: Terms,
     /// Weighted sum of this UAV's terms (no penalty).
     pub cost: f64,
+    /// Length of the path the UAV flies (with its arcs where it flies them), m.
     pub length_m: f64,
+    /// Its constant speed over that length, m/s.
     pub speed_mps: f64,
+    /// When it reaches UGV0, s from the fleet's departure.
     pub arrival_s: f64,
+    /// Energy the flight takes by the rotary-wing model (docs/model.md, "Energy"), J.
     pub energy_j: f64,
     /// Energy over battery capacity.
     pub battery_ratio: f64,
     /// Minimum clearance above terrain (exact only in reports).
     pub min_clearance_m: f64,
+    /// Seconds out of contact with every ground node (communication steps).
     pub outage_s: f64,
 }
 
 /// The full assessment of a plan.
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 pub struct Assessment {
+    /// What the assessment says of each UAV, in fleet order.
     pub per_uav: Vec<UavReport>,
     /// Sum of the UAVs' weighted terms.
     pub terms_cost: f64,
@@ -69,11 +77,14 @@ pub struct Assessment {
     /// The feasibility profile it was assessed under.
     #[serde(default)]
     pub profile: FeasibilityProfile,
+    /// Every violation by name, UAV, place and time, when the assessment was asked for
+    /// them (a report); `None` on the optimizer's hot path.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub violations: Option<Vec<Violation>>,
 }
 
 impl Assessment {
+    /// No hard constraint is violated (the violation measure is 0).
     #[must_use]
     pub fn feasible(&self) -> bool {
         self.violation == 0.0

@@ -29,9 +29,13 @@ pub const SPSO_SMOOTH_LIMIT_DEG: f64 = 45.0;
 /// J1..J4 of one path.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct SpsoTerms {
+    /// J1: length of the path with absolute altitudes, m.
     pub length: f64,
+    /// J2: threat danger-band cost (SPSO's MyCost).
     pub threat: f64,
+    /// J3: altitude deviation from the band's centre at the free waypoints, m.
     pub altitude: f64,
+    /// J4: turn and climb-angle excess over their limits, deg.
     pub smoothness: f64,
 }
 

@@ -124,6 +124,7 @@ impl Terms {
         TermId::ALL.iter().map(|&t| (t, self[t]))
     }
 
+    /// The values added up, in term order.
     #[must_use]
     pub fn sum(&self) -> f64 {
         self.0.iter().sum()

@@ -145,7 +145,7 @@ impl Gwo {
         &self.params
     }
 
-    /// a = 2 - 2 t / T at budget fraction `frac = t / T` ([`Progress::fraction`]), never
+    /// a = 2 - 2 t / T at budget fraction `frac = t / T` ([`super::Progress::fraction`]), never
     /// below 0.
     #[must_use]
     pub fn a(frac: f64) -> f64 {

@@ -20,7 +20,7 @@
 //! then, once every trial is evaluated, u_i replaces x_i when it is no worse; a strictly
 //! better trial sends x_i to the archive (random members are dropped beyond
 //! round(r_arc N)) and records CR_i, F_i with weight |f(x_i) - f(u_i)|. Memory slot k
-//! (cyclic) takes the weighted Lehmer means of the successes (M_CR[k] turns terminal when
+//! (cyclic) takes the weighted Lehmer means of the successes (`M_CR[k]` turns terminal when
 //! every successful CR was 0). The population then shrinks linearly with the budget
 //! fraction, N = round(N_init + (N_min - N_init) fraction), dropping the worst.
 //!

@@ -2,7 +2,7 @@
 //!
 //! [`OptimizerParams`] holds one section per optimizer, so a single file (or CLI default)
 //! configures a whole comparison. Every section's `DEFAULT` constant is the paper's setting
-//! and feeds `Default` and serde's defaults alike. [`AlgorithmParams::validate`] runs once,
+//! and feeds `Default` and serde's defaults alike. [`OptimizerParams::validate`] runs once,
 //! up front, so the optimizers' hot paths can stay infallible; [`build`] then makes the
 //! optimizer.
 

@@ -29,7 +29,7 @@
 //!
 //! PSO (cartesian encoding), APSO (angle encoding) and SPSO (spherical encoding) are this
 //! one optimizer with the same parameters; only the encoding differs. DLS-SMPSO
-//! ([`super::dls`]) reuses the swarm machinery below.
+//! ([`super::dls_paper`], [`super::dls_exemplar`]) reuses the swarm machinery below.
 
 use serde::{Deserialize, Serialize};
 

@@ -69,7 +69,7 @@ impl QpsoParams {
         )
     }
 
-    /// beta at budget fraction `frac` ([`Progress::fraction_to_last`]): linear from
+    /// beta at budget fraction `frac` ([`super::Progress::fraction_to_last`]): linear from
     /// `beta_start` at the first step to `beta_end` at the last.
     #[must_use]
     pub fn beta(&self, frac: f64) -> f64 {

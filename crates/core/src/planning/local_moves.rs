@@ -137,7 +137,7 @@ impl BlockProblem for PlanningProblem<'_> {
     /// scale) goes to the two ends of the waypoint segment nearest its place (horizontally;
     /// a start or goal end gets nothing). A violation placed at a waypoint (a turn, a
     /// climb) is as near the segments on both sides of it, and goes to either, as the
-    /// rounding of [`nearest_segment`] falls: mapping each UAV's own violations by their
+    /// rounding of `nearest_segment` falls: mapping each UAV's own violations by their
     /// index instead was measured and lost (docs/results.md, "Aimed nudges"). Violations without a place (energy, speed) add
     /// nothing there. When departure delays are free one more site, the UAV's delay, takes
     /// the violations on its first leg (UAVs leaving the take-off zone together) and its

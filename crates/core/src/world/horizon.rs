@@ -14,7 +14,7 @@
 //!
 //! The table is megabytes (4096 bins x 140 samples x 4 bytes for a 1 km map), so a look-up
 //! is a cache miss more often than not. Each bin's entries never decrease with distance (a
-//! running maximum), so a block of [`BLOCK`] entries lies between its first and last; a
+//! running maximum), so a block of `BLOCK` entries lies between its first and last; a
 //! coarse table of those two values per block (16 times smaller, it stays in cache) settles
 //! most look-ups: a UAV whose slope is above the block's last entry sees the antenna, one at
 //! or below its first does not, and only the rest read the full table. The answer is the

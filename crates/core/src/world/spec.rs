@@ -145,7 +145,7 @@ impl Default for MapSpec {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GoalSpec {
-    /// Position [x, y] and arrival height above ground [z] of the UAVs, metres.
+    /// Position `[x, y]` and arrival height above ground `[z]` of the UAVs, metres.
     #[serde(deserialize_with = "exactly")]
     pub position: [f64; 3],
     /// Antenna height of UGV0 above ground, metres (2).

@@ -66,7 +66,7 @@ pub struct CoopParams {
     /// usually open to another whose own sector search is stuck on the wrong side.
     pub transplant: bool,
     /// Particles of a visit of a violating block (infeasible context) that are the
-    /// problem's local move of the context's block ([`Evaluator::nudge`]; in a planning
+    /// problem's local move of the context's block ([`crate::optim::Evaluator::nudge`]; in a planning
     /// problem one free waypoint moved by a few separation distances), taken from the
     /// perturbed ones (4: at the default population all of them but one, or two when there
     /// is no transplant; 0: none, and no random draw for them). Measured in
@@ -74,7 +74,7 @@ pub struct CoopParams {
     pub nudges: usize,
     /// Once a round has passed without progress (an infeasible context whose violation did
     /// not drop by `restart_drop`), make the transplant a *shifted copy*
-    /// ([`Evaluator::shifted_copy`]): the donor's path moved as a whole, in a planning
+    /// ([`crate::optim::Evaluator::shifted_copy`]): the donor's path moved as a whole, in a planning
     /// problem by 1.5 to 3 separation distances sideways in a random direction and a
     /// Gaussian of one in height. Under common arrival the copy and its donor are at the
     /// same share of their routes at every instant, so they fly side by side about that
@@ -82,7 +82,7 @@ pub struct CoopParams {
     /// docs/results.md ("Shifted copies").
     pub shifted_copies: bool,
     /// Share of the nudges aimed at where the block's violations are
-    /// ([`Evaluator::hot_spots`]: in a planning problem the free waypoints next to the
+    /// ([`crate::optim::Evaluator::hot_spots`]: in a planning problem the free waypoints next to the
     /// UAV's violations, and its departure delay when delays are free, drawn in proportion
     /// to their measure); the rest, and every nudge when the hot spots weigh nothing, move a
     /// waypoint drawn uniformly. Finding the hot spots assesses the context once per visit,
