@@ -9,6 +9,7 @@ use swarmplan_core::attempts::{run_attempts, MAX_ATTEMPTS};
 use swarmplan_core::run::RunRequest;
 use swarmplan_experiment::settings::{Resolved, RunSettings};
 use swarmplan_io::artifact::{ArtifactFiles, RunArtifact};
+use swarmplan_io::convergence::ConvergenceRow;
 use swarmplan_io::plan_file::plan_file;
 
 use crate::errors::{bad, to_py};
@@ -83,20 +84,11 @@ pub fn plan(
     if attempts > 1 {
         artifact.attempts = made.records;
     }
-    let n = world.uav_count().max(1) as f64;
-    let convergence: Vec<_> = result
+    let convergence: Vec<ConvergenceRow> = result
         .outcome
         .trace
         .iter()
-        .map(|r| {
-            json!({
-                "iteration": r.iteration,
-                "evaluations": r.evaluations,
-                "best_cost": r.best_cost,
-                "best_cost_per_uav": r.best_cost / n,
-                "best_violation": r.best_violation,
-            })
-        })
+        .map(|r| ConvergenceRow::of(r, world.uav_count()))
         .collect();
     let out = json!({
         "run": artifact,

@@ -6,6 +6,9 @@
 #![allow(rustdoc::broken_intra_doc_links)]
 
 mod commands;
+mod figures;
+mod mission_export;
+mod out_folder;
 mod render;
 mod report;
 mod settings_args;

@@ -2,7 +2,9 @@
 //! georeferencing and mission exports live here so that `swarmplan-core` stays free of I/O.
 
 pub mod artifact;
+
 pub mod atomic;
+pub mod convergence;
 pub mod dem;
 pub mod dem_ops;
 pub mod export;

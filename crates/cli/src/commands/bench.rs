@@ -328,7 +328,7 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
         super::warn_unreachable(&loaded.origin, &loaded.spec);
     }
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?;
-    super::out_folder::bench_folder(&args.out)?;
+    crate::out_folder::bench_folder(&args.out)?;
     // Ctrl-C stops the process itself: the records written stay, `--resume` goes on.
     let cores = workers::cores();
     let asked = workers::Asked::from_count_or_env(args.threads);
@@ -420,7 +420,7 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
     }
     let summary = summarize_records(spec.master_seed, &outcome.records);
     write_summary(&args.out, &summary)?;
-    for f in super::plot::bench_figures(&args.out, &outcome.records)? {
+    for f in crate::figures::bench_figures(&args.out, &outcome.records)? {
         eprintln!("wrote {} (and .svg)", f.display());
     }
     Ok(())
@@ -431,7 +431,7 @@ pub fn run_aggregate(args: &AggregateArgs) -> Result<()> {
     // belong together leave nothing behind.
     let builds = swarmplan_experiment::store::ShardBuilds::of(&args.dirs)?;
     let (spec, records) = aggregate(&args.dirs)?;
-    super::out_folder::aggregate_folder(&args.out, &args.dirs)?;
+    crate::out_folder::aggregate_folder(&args.out, &args.dirs)?;
     if let Some(warning) = builds.warning() {
         eprintln!("warning: {warning}");
     }
@@ -445,7 +445,7 @@ pub fn run_aggregate(args: &AggregateArgs) -> Result<()> {
         args.dirs.len()
     );
     write_summary(&args.out, &summary)?;
-    for f in super::plot::bench_figures(&args.out, &records)? {
+    for f in crate::figures::bench_figures(&args.out, &records)? {
         eprintln!("wrote {} (and .svg)", f.display());
     }
     Ok(())

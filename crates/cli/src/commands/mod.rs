@@ -2,7 +2,6 @@
 pub mod bench;
 pub mod evaluate;
 pub mod export;
-pub mod out_folder;
 pub mod plan;
 pub mod plot;
 pub mod report;

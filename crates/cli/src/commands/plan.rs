@@ -13,7 +13,8 @@ use swarmplan_core::optim::Budget;
 use swarmplan_core::run::RunRequest;
 use swarmplan_experiment::workers;
 use swarmplan_io::artifact::{ArtifactFiles, RunArtifact};
-use swarmplan_io::atomic::{write_atomic, write_atomic_with};
+use swarmplan_io::atomic::write_atomic;
+use swarmplan_io::convergence::write_convergence;
 use swarmplan_io::plan_file::plan_file;
 use swarmplan_io::scenario::to_toml;
 
@@ -222,7 +223,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         .export
         .as_deref()
         .map(|formats| {
-            super::export::PlannedExport::prepare(
+            crate::mission_export::PlannedExport::prepare(
                 &args.scenario.scenario,
                 args.scenario.terrain.as_deref(),
                 formats,
@@ -245,7 +246,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         .num_threads(threads)
         .build()
         .with_context(|| format!("cannot start {threads} worker threads"))?;
-    let out = super::out_folder::plan_folder(&args.out, args.force)?;
+    let out = crate::out_folder::plan_folder(&args.out, args.force)?;
     let out = out.as_path();
     if !args.json {
         eprintln!(
@@ -330,36 +331,12 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     )
     .with_context(|| format!("{}: cannot write", plan_path.display()))?;
     let conv_path = out.join("convergence.csv");
-    // Streamed: a long run's trace (a row per kept iteration, a column per UAV) can be
-    // large (up to `TRACE_CAP` rows, `swarmplan_core::optim::thinned`).
-    write_atomic_with(&conv_path, |csv| {
-        let n = world.uav_count();
-        write!(
-            csv,
-            "iteration,evaluations,best_cost,best_cost_per_uav,best_violation"
-        )?;
-        for i in 0..n {
-            write!(csv, ",uav{i}_cost")?;
-        }
-        writeln!(csv)?;
-        for (k, r) in result.outcome.trace.iter().enumerate() {
-            write!(
-                csv,
-                "{},{},{},{},{}",
-                r.iteration,
-                r.evaluations,
-                r.best_cost,
-                r.best_cost / n as f64,
-                r.best_violation
-            )?;
-            for c in uav_trace.get(k).map_or(&[][..], |v| &v[..]) {
-                write!(csv, ",{c}")?;
-            }
-            writeln!(csv)?;
-        }
-        Ok(())
-    })
-    .with_context(|| format!("{}: cannot write", conv_path.display()))?;
+    write_convergence(
+        &conv_path,
+        world.uav_count(),
+        &result.outcome.trace,
+        &uav_trace,
+    )?;
 
     let a = &result.assessment;
     let mut files = ArtifactFiles {
@@ -396,11 +373,11 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         .with_context(|| format!("{}: cannot write", scenario_path.display()))?;
     let trace: Vec<f64> = result.outcome.trace.iter().map(|r| r.best_cost).collect();
     let iterations: Vec<usize> = result.outcome.trace.iter().map(|r| r.iteration).collect();
-    let title = super::plot::plan_title(&world.spec().name, &artifact);
+    let title = crate::figures::plan_title(&world.spec().name, &artifact);
     let figures = if args.no_figures {
         Vec::new()
     } else {
-        super::plot::plan_figures(
+        crate::figures::plan_figures(
             out,
             &world,
             &result.plan,

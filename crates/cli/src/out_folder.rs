@@ -66,7 +66,7 @@ fn written_by_a_plan(name: &str) -> bool {
     let figure = name
         .strip_suffix(".png")
         .or_else(|| name.strip_suffix(".svg"))
-        .is_some_and(|stem| super::plot::PLAN_FIGURES.contains(&stem));
+        .is_some_and(|stem| crate::figures::PLAN_FIGURES.contains(&stem));
     figure
         || matches!(
             name,
