@@ -13,5 +13,6 @@ pub mod geo;
 pub mod import;
 pub mod outside;
 pub mod plan_file;
+pub mod plan_folder;
 pub mod reference_data;
 pub mod scenario;

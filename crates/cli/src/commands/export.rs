@@ -10,6 +10,7 @@ use clap::Args;
 use swarmplan_io::export::ExportFormat;
 use swarmplan_io::geo::{load_spec_with_origin, parse_lat_lon_alt, resolve_frame};
 use swarmplan_io::plan_file::{read_plan, Provenance};
+use swarmplan_io::plan_folder::PlanFolder;
 use swarmplan_io::scenario::build_world;
 
 use crate::mission_export::{georeferenced_by, write_all};
@@ -68,7 +69,7 @@ pub fn run(args: &ExportArgs) -> Result<()> {
     let scenario = match &args.scenario {
         Some(s) => s.clone(),
         None => {
-            let p = args.dir.join("scenario.toml");
+            let p = PlanFolder::new(&args.dir).scenario_path();
             anyhow::ensure!(
                 p.exists(),
                 "{}: not found (written by `swarmplan plan`); name the scenario with \
@@ -85,7 +86,7 @@ pub fn run(args: &ExportArgs) -> Result<()> {
     let plan_path = args
         .plan
         .clone()
-        .unwrap_or_else(|| args.dir.join("plan.json"));
+        .unwrap_or_else(|| PlanFolder::new(&args.dir).plan_path());
     let plan = read_plan(&plan_path, &world, Provenance::MustMatch)?;
     let (frame, source) = resolve_frame(&loaded, origin, terrain.as_deref(), explicit)?;
     let out = args.out.clone().unwrap_or_else(|| args.dir.clone());

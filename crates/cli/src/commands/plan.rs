@@ -6,17 +6,15 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use clap::Args;
-use swarmplan_core::attempts::{run_attempts, MAX_ATTEMPTS};
+use swarmplan_core::attempts::{run_attempts, Attempts, MAX_ATTEMPTS};
 use swarmplan_core::encoding::{EncodingKind, InitKind};
 use swarmplan_core::method::Method;
-use swarmplan_core::optim::Budget;
+use swarmplan_core::optim::{Budget, Termination};
 use swarmplan_core::run::RunRequest;
+use swarmplan_core::world::World;
 use swarmplan_experiment::workers;
 use swarmplan_io::artifact::{ArtifactFiles, RunArtifact};
-use swarmplan_io::atomic::write_atomic;
-use swarmplan_io::convergence::write_convergence;
-use swarmplan_io::plan_file::plan_file;
-use swarmplan_io::scenario::to_toml;
+use swarmplan_io::plan_folder::PlanFolder;
 
 use crate::render;
 use crate::settings_args::SettingsArgs;
@@ -211,8 +209,66 @@ fn method_help() -> String {
     )
 }
 
+/// What a plan run needs before it starts, every argument checked: a bad one leaves no
+/// output folder behind.
+struct Prepared {
+    req: RunRequest,
+    export: Option<crate::mission_export::PlannedExport>,
+    pool: rayon::ThreadPool,
+    /// A note when the thread count asked for was held to the cores.
+    threads_note: Option<String>,
+    folder: PlanFolder,
+}
+
+/// The files a finished run wrote, and its record.
+struct Written {
+    artifact: RunArtifact,
+    plan: PathBuf,
+    convergence: PathBuf,
+    run: PathBuf,
+    scenario: PathBuf,
+    figures: Vec<PathBuf>,
+}
+
 pub fn run_command(args: &PlanArgs) -> Result<()> {
     let world = super::load_world(&args.scenario)?;
+    let prepared = prepare(args, &world)?;
+    if !args.json {
+        eprintln!("{}", announcement(args, &world, &prepared.req));
+    }
+    if let Some(note) = &prepared.threads_note {
+        eprintln!("{note}");
+    }
+    let attempts = run_with_progress(args, &world, &prepared);
+    let result = &attempts.result;
+    if result.outcome.termination == Termination::TimeLimit {
+        eprintln!(
+            "stopped by --time-limit after {} evaluations: this run is not reproducible from its seed alone",
+            result.outcome.evaluations
+        );
+    }
+    let written = write_outputs(args, &world, &prepared, &attempts)?;
+    let a = &result.assessment;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&written.artifact)?);
+    } else {
+        print_summary(args, &world, &attempts, &written);
+    }
+    let line = a.verdict();
+    if args.json {
+        eprintln!("{line}");
+    } else {
+        println!("{line}");
+    }
+    if args.require_feasible && !a.feasible() {
+        return Err(Infeasible(line).into());
+    }
+    Ok(())
+}
+
+/// Checks every argument, makes the request and the worker pool, then settles the output
+/// folder (last, so a bad argument leaves no `out-2`).
+fn prepare(args: &PlanArgs, world: &World) -> Result<Prepared> {
     let resolved = args
         .settings
         .run_settings(args.time_limit, args.until_feasible)
@@ -231,14 +287,12 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             )
         })
         .transpose()?;
-    let method = args.method.with(args.encoding, args.init);
     let req = RunRequest {
-        method,
+        method: args.method.with(args.encoding, args.init),
         params: resolved.params,
         budget: resolved.budget,
         seed: args.seed.unwrap_or(world.spec().planning.seed),
     };
-    // Every argument is checked before the folder is chosen: a bad one leaves no out-2.
     let cores = workers::cores();
     let asked = workers::Asked::from_count_or_env(args.threads);
     let threads = asked.threads(cores);
@@ -246,34 +300,47 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         .num_threads(threads)
         .build()
         .with_context(|| format!("cannot start {threads} worker threads"))?;
-    let out = crate::out_folder::plan_folder(&args.out, args.force)?;
-    let out = out.as_path();
-    if !args.json {
-        eprintln!(
-            "planning {} with {} ({} on the {} encoding, {} init; seed {}, budget {} iterations / {} evaluations, population {}{})",
-            world.spec().name,
-            req.method,
-            req.method.optimizer,
-            req.method.encoding,
-            req.method.init,
-            req.seed,
-            req.budget
-                .max_iterations()
-                .map_or("any".into(), |m| m.to_string()),
-            req.budget
-                .evaluations
-                .map_or("any".into(), |m| m.to_string()),
-            req.params.population(req.method.optimizer),
-            if args.attempts > 1 {
-                format!("; up to {} attempts", args.attempts)
-            } else {
-                String::new()
-            }
-        );
-    }
-    if let Some(what) = asked.held(cores) {
-        eprintln!("{}", super::threads_note(&what, cores));
-    }
+    let folder = PlanFolder::new(crate::out_folder::plan_folder(&args.out, args.force)?);
+    Ok(Prepared {
+        req,
+        export,
+        pool,
+        threads_note: asked
+            .held(cores)
+            .map(|what| super::threads_note(&what, cores)),
+        folder,
+    })
+}
+
+/// The line `plan` says before it starts: what it plans, with which method, seed and budget.
+fn announcement(args: &PlanArgs, world: &World, req: &RunRequest) -> String {
+    format!(
+        "planning {} with {} ({} on the {} encoding, {} init; seed {}, budget {} iterations / {} evaluations, population {}{})",
+        world.spec().name,
+        req.method,
+        req.method.optimizer,
+        req.method.encoding,
+        req.method.init,
+        req.seed,
+        req.budget
+            .max_iterations()
+            .map_or("any".into(), |m| m.to_string()),
+        req.budget
+            .evaluations
+            .map_or("any".into(), |m| m.to_string()),
+        req.params.population(req.method.optimizer),
+        if args.attempts > 1 {
+            format!("; up to {} attempts", args.attempts)
+        } else {
+            String::new()
+        }
+    )
+}
+
+/// Runs the attempts on the worker pool with a progress bar (one per attempt), saying each
+/// attempt's outcome when there are several.
+fn run_with_progress(args: &PlanArgs, world: &World, prepared: &Prepared) -> Attempts {
+    let req = &prepared.req;
     // A mutex, not a cell: the run goes to the worker pool.
     let progress = std::sync::Mutex::new(Progress::new(&req.budget, world.uav_count(), args.json));
     let progress = || {
@@ -285,8 +352,8 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     let of = args.attempts;
     let run = || {
         run_attempts(
-            &world,
-            &req,
+            world,
+            req,
             args.attempts,
             &mut |attempt, r| {
                 let mut p = progress();
@@ -312,158 +379,135 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
             },
         )
     };
-    let attempts = pool.install(run);
+    let attempts = prepared.pool.install(run);
     progress().finish();
-    let chosen = attempts.chosen();
-    let (result, uav_trace) = (attempts.result, attempts.uav_trace);
-    if result.outcome.termination == swarmplan_core::optim::Termination::TimeLimit {
-        eprintln!(
-            "stopped by --time-limit after {} evaluations: this run is not reproducible from its seed alone",
-            result.outcome.evaluations
-        );
-    }
+    attempts
+}
 
-    let plan_path = out.join("plan.json");
-    let pf = plan_file(&world, &result.plan);
-    write_atomic(
-        &plan_path,
-        (serde_json::to_string_pretty(&pf)? + "\n").as_bytes(),
-    )
-    .with_context(|| format!("{}: cannot write", plan_path.display()))?;
-    let conv_path = out.join("convergence.csv");
-    write_convergence(
-        &conv_path,
-        world.uav_count(),
-        &result.outcome.trace,
-        &uav_trace,
-    )?;
-
-    let a = &result.assessment;
+/// Writes the plan folder (plan, convergence, exports, run record, scenario, figures).
+fn write_outputs(
+    args: &PlanArgs,
+    world: &World,
+    prepared: &Prepared,
+    attempts: &Attempts,
+) -> Result<Written> {
+    let (result, uav_trace) = (&attempts.result, &attempts.uav_trace);
+    let folder = &prepared.folder;
+    let plan = folder.write_plan(world, &result.plan)?;
+    let convergence =
+        folder.write_convergence(world.uav_count(), &result.outcome.trace, uav_trace)?;
     let mut files = ArtifactFiles {
-        plan: plan_path.display().to_string(),
-        convergence: conv_path.display().to_string(),
+        plan: plan.display().to_string(),
+        convergence: convergence.display().to_string(),
         exports: Vec::new(),
     };
-    if let Some(export) = &export {
+    if let Some(export) = &prepared.export {
         files.exports = export
-            .write(&world, &result.plan, out)?
+            .write(world, &result.plan, folder.dir())?
             .iter()
             .map(|p| p.display().to_string())
             .collect();
     }
-    let mut artifact = RunArtifact::new(&world, &result, req.budget, req.params, files);
+    let req = &prepared.req;
+    let mut artifact = RunArtifact::new(world, result, req.budget, req.params, files);
     if args.attempts > 1 {
         artifact.attempts.clone_from(&attempts.records);
     }
-    let run_path = out.join("run.json");
-    write_atomic(
-        &run_path,
-        (serde_json::to_string_pretty(&artifact)? + "\n").as_bytes(),
-    )
-    .with_context(|| format!("{}: cannot write", run_path.display()))?;
-    let scenario_path = out.join("scenario.toml");
-    let mut written_spec = world.spec().clone();
-    if written_spec.terrain.source != "procedural" {
-        // Absolute, so the folder's scenario.toml resolves from anywhere.
-        if let Ok(abs) = std::fs::canonicalize(&written_spec.terrain.source) {
-            written_spec.terrain.source = abs.display().to_string();
-        }
-    }
-    write_atomic(&scenario_path, to_toml(&written_spec).as_bytes())
-        .with_context(|| format!("{}: cannot write", scenario_path.display()))?;
-    let trace: Vec<f64> = result.outcome.trace.iter().map(|r| r.best_cost).collect();
-    let iterations: Vec<usize> = result.outcome.trace.iter().map(|r| r.iteration).collect();
-    let title = crate::figures::plan_title(&world.spec().name, &artifact);
+    let run = folder.write_run(&artifact)?;
+    let scenario = folder.write_scenario(world.spec())?;
     let figures = if args.no_figures {
         Vec::new()
     } else {
+        let trace: Vec<f64> = result.outcome.trace.iter().map(|r| r.best_cost).collect();
+        let iterations: Vec<usize> = result.outcome.trace.iter().map(|r| r.iteration).collect();
         crate::figures::plan_figures(
-            out,
-            &world,
+            folder.dir(),
+            world,
             &result.plan,
             Some(&iterations),
             &trace,
-            swarmplan_plot::PerUav::Rows(&uav_trace),
-            &title,
+            swarmplan_plot::PerUav::Rows(uav_trace),
+            &crate::figures::plan_title(&world.spec().name, &artifact),
         )?
     };
-    if args.json {
-        println!("{}", serde_json::to_string_pretty(&artifact)?);
-    } else {
-        print!("{}", render::assessment(&world, a));
+    Ok(Written {
+        artifact,
+        plan,
+        convergence,
+        run,
+        scenario,
+        figures,
+    })
+}
+
+/// What `plan` prints for a person: the assessment, the run, the attempts, the pace and
+/// departures when free, and the files written.
+fn print_summary(args: &PlanArgs, world: &World, attempts: &Attempts, written: &Written) {
+    let result = &attempts.result;
+    let a = &result.assessment;
+    print!("{}", render::assessment(world, a));
+    println!(
+        "\nmethod {} ({} on the {} encoding, {} init), seed {}: {} evaluations, {} iterations, {:.3} s",
+        result.method,
+        result.method.optimizer,
+        result.method.encoding,
+        result.method.init,
+        result.seed,
+        result.outcome.evaluations,
+        result.outcome.iterations,
+        result.seconds
+    );
+    if args.attempts > 1 {
+        let evaluations: u64 = attempts.records.iter().map(|a| a.evaluations).sum();
+        let why = if a.feasible() {
+            "the first feasible one"
+        } else {
+            "none feasible: the one of least violation measure, then cost"
+        };
+        let repeat = if result.outcome.termination == Termination::TimeLimit {
+            "stopped by the clock, so its seed alone does not repeat it".to_owned()
+        } else {
+            format!("`--seed {}` repeats it alone", result.seed)
+        };
         println!(
-            "\nmethod {} ({} on the {} encoding, {} init), seed {}: {} evaluations, {} iterations, {:.3} s",
-            result.method,
-            result.method.optimizer,
-            result.method.encoding,
-            result.method.init,
-            result.seed,
-            result.outcome.evaluations,
-            result.outcome.iterations,
-            result.seconds
+            "kept attempt {} of {} (--attempts {}; {why}), {evaluations} evaluations in all; {repeat}",
+            attempts.chosen(),
+            attempts.records.len(),
+            args.attempts,
         );
-        if args.attempts > 1 {
-            let evaluations: u64 = attempts.records.iter().map(|a| a.evaluations).sum();
-            let why = if a.feasible() {
-                "the first feasible one"
-            } else {
-                "none feasible: the one of least violation measure, then cost"
-            };
-            let repeat =
-                if result.outcome.termination == swarmplan_core::optim::Termination::TimeLimit {
-                    "stopped by the clock, so its seed alone does not repeat it".to_owned()
-                } else {
-                    format!("`--seed {}` repeats it alone", result.seed)
-                };
-            println!(
-                "kept attempt {chosen} of {} (--attempts {}; {why}), {evaluations} evaluations in all; {repeat}",
-                attempts.records.len(),
-                args.attempts,
-            );
-        }
-        let timing = &world.spec().timing;
-        if timing.pace_is_free() {
-            println!(
-                "pace {:.3} (chosen in timing.pace [{}, {}]; 1 = nearest cruise)",
-                result.plan.pace, timing.pace[0], timing.pace[1]
-            );
-        }
-        if timing.delay_is_free() {
-            let timed = swarmplan_core::timing::TimedPlan::flown(&world, &result.plan);
-            let departures: Vec<String> = timed
-                .paths
-                .iter()
-                .enumerate()
-                .map(|(u, p)| format!("uav {u} {:.1} s", p.depart))
-                .collect();
-            println!(
-                "departures (each UAV hovers at its start until then; delays up to {:.0} % of the arrival time): {}",
-                100.0 * timing.max_delay,
-                departures.join(", ")
-            );
-        }
+    }
+    let timing = &world.spec().timing;
+    if timing.pace_is_free() {
         println!(
-            "wrote {}, {}, {} and {}",
-            plan_path.display(),
-            conv_path.display(),
-            run_path.display(),
-            scenario_path.display()
+            "pace {:.3} (chosen in timing.pace [{}, {}]; 1 = nearest cruise)",
+            result.plan.pace, timing.pace[0], timing.pace[1]
         );
-        for f in &figures {
-            println!("wrote {} (and .svg)", f.display());
-        }
-        for f in &artifact.files.exports {
-            println!("wrote {f}");
-        }
     }
-    let line = a.verdict();
-    if args.json {
-        eprintln!("{line}");
-    } else {
-        println!("{line}");
+    if timing.delay_is_free() {
+        let timed = swarmplan_core::timing::TimedPlan::flown(world, &result.plan);
+        let departures: Vec<String> = timed
+            .paths
+            .iter()
+            .enumerate()
+            .map(|(u, p)| format!("uav {u} {:.1} s", p.depart))
+            .collect();
+        println!(
+            "departures (each UAV hovers at its start until then; delays up to {:.0} % of the arrival time): {}",
+            100.0 * timing.max_delay,
+            departures.join(", ")
+        );
     }
-    if args.require_feasible && !a.feasible() {
-        return Err(Infeasible(line).into());
+    println!(
+        "wrote {}, {}, {} and {}",
+        written.plan.display(),
+        written.convergence.display(),
+        written.run.display(),
+        written.scenario.display()
+    );
+    for f in &written.figures {
+        println!("wrote {} (and .svg)", f.display());
     }
-    Ok(())
+    for f in &written.artifact.files.exports {
+        println!("wrote {f}");
+    }
 }

@@ -8,11 +8,10 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Args;
 use swarmplan_experiment::store::read_records;
-use swarmplan_io::artifact::RunArtifact;
-use swarmplan_io::plan_file::{read_plan, Provenance};
-use swarmplan_io::scenario::{build_world, load_spec};
+use swarmplan_io::scenario::build_world;
 
-use swarmplan_io::convergence::{read_convergence, ConvergenceColumns};
+use swarmplan_io::convergence::ConvergenceColumns;
+use swarmplan_io::plan_folder::PlanFolder;
 
 use crate::figures::{bench_figures, plan_figures, plan_title};
 
@@ -24,27 +23,18 @@ pub struct PlotArgs {
 
 pub fn run(args: &PlotArgs) -> Result<()> {
     let dir = &args.dir;
-    let files = if dir.join("plan.json").exists() {
-        let scenario = dir.join("scenario.toml");
-        anyhow::ensure!(
-            scenario.exists(),
-            "{}: missing; `swarmplan plan --out {}` writes it",
-            scenario.display(),
-            dir.display()
-        );
-        let world = build_world(&load_spec(&scenario.display().to_string())?, None)?;
-        let plan = read_plan(&dir.join("plan.json"), &world, Provenance::MustMatch)?;
+    let folder = PlanFolder::new(dir);
+    let files = if folder.holds_plan() {
+        let world = build_world(&folder.load_scenario()?, None)?;
+        let plan = folder.read_plan(&world)?;
         let ConvergenceColumns {
             iterations,
             total: trace,
             per_uav,
-        } = read_convergence(&dir.join("convergence.csv"))?;
-        let run_json = dir.join("run.json");
-        let title = if run_json.exists() {
-            let run = RunArtifact::read(&run_json)?;
-            plan_title(&world.spec().name, &run)
-        } else {
-            world.spec().name.clone()
+        } = folder.read_convergence()?;
+        let title = match folder.read_run()? {
+            Some(run) => plan_title(&world.spec().name, &run),
+            None => world.spec().name.clone(),
         };
         let per_uav = if per_uav.is_empty() {
             swarmplan_plot::PerUav::None

@@ -5,9 +5,8 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 use clap::Args;
 use swarmplan_core::cost::assess;
-use swarmplan_io::artifact::RunArtifact;
-use swarmplan_io::plan_file::{read_plan, Provenance};
-use swarmplan_io::scenario::{build_world, load_spec};
+use swarmplan_io::plan_folder::PlanFolder;
+use swarmplan_io::scenario::build_world;
 
 use crate::report::{bench_report, plan_report};
 
@@ -24,25 +23,14 @@ pub fn run(args: &ReportArgs) -> Result<()> {
     let dir = &args.dir;
     let out = args.out.clone().unwrap_or_else(|| dir.join("report.html"));
     check_out(&out)?;
-    let html = if dir.join("plan.json").exists() {
-        let scenario = dir.join("scenario.toml");
-        let loaded = if scenario.exists() {
-            load_spec(&scenario.display().to_string())?
-        } else {
-            anyhow::bail!(
-                "{}: missing; `swarmplan plan --out {}` writes it next to plan.json",
-                scenario.display(),
-                dir.display()
-            );
-        };
-        let world = build_world(&loaded, None)?;
-        let plan = read_plan(&dir.join("plan.json"), &world, Provenance::MustMatch)?;
+    let folder = PlanFolder::new(dir);
+    let html = if folder.holds_plan() {
+        let world = build_world(&folder.load_scenario()?, None)?;
+        let plan = folder.read_plan(&world)?;
         let a = assess(&world, &plan, true);
-        let run_json = dir.join("run.json");
-        let subtitle = if run_json.exists() {
-            RunArtifact::read(&run_json)?.describe()
-        } else {
-            "plan loaded from plan.json".into()
+        let subtitle = match folder.read_run()? {
+            Some(run) => run.describe(),
+            None => "plan loaded from plan.json".into(),
         };
         plan_report(dir, &world, &plan, &a, &subtitle)?
     } else if dir.join("summary.md").exists() {
