@@ -6,7 +6,9 @@ use std::path::PathBuf;
 use pyo3::prelude::*;
 use swarmplan_core::world::unreachable::unreachable_feasibility;
 use swarmplan_core::world::World;
-use swarmplan_io::scenario::{build_world_noted, builtin_names, load_spec};
+use swarmplan_io::scenario::{build_world_noted, builtin_names};
+
+use swarmplan_io::catalog::load_spec;
 
 use crate::args;
 use crate::errors::to_py;
@@ -46,5 +48,5 @@ pub fn scenarios() -> Vec<&'static str> {
 /// only a file's path absolute.
 #[pyfunction]
 pub fn is_scenario_name(name: &str) -> bool {
-    swarmplan_io::scenario::is_scenario_name(name)
+    swarmplan_io::catalog::is_scenario_name(name)
 }

@@ -187,7 +187,9 @@ mod tests {
     use super::*;
     use swarmplan_core::cost::assess;
     use swarmplan_core::plan::{Path, Plan};
-    use swarmplan_io::scenario::{build_world, load_spec};
+    use swarmplan_io::scenario::build_world;
+
+    use swarmplan_io::catalog::load_spec;
 
     /// `tiny` with a fixed radio range and both UAVs flying the straight line to UGV0 at
     /// 60 m above the start's ground.

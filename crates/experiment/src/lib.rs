@@ -8,6 +8,7 @@ pub mod matrix;
 pub mod ranking;
 pub mod record;
 pub mod runner;
+pub mod scenario_summary;
 pub mod settings;
 pub mod stats;
 pub mod store;

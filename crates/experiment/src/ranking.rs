@@ -12,13 +12,13 @@
 //! rather than one pooled over all runs.
 //!
 //! Only instances where every method of the parameter set was run are blocks; the others
-//! are listed as left out. Per-scenario tests (runs as blocks) stay in [`crate::summary`].
+//! are listed as left out. Per-scenario tests (runs as blocks) stay in [`crate::scenario_summary`].
 
 use serde::{Deserialize, Serialize};
 use swarmplan_core::method::Method;
 
+use crate::scenario_summary::ScenarioSummary;
 use crate::stats::{friedman, mean_rank_posthoc, FriedmanTest, PairwiseRankTest};
-use crate::summary::ScenarioSummary;
 
 /// One instance of a suite: each method's FR, median cost per UAV and rank, in the order of
 /// [`SuiteRanking::methods`].

@@ -13,7 +13,9 @@ use swarmplan_core::optim::cancel::Cancel;
 use swarmplan_core::optim::Termination;
 use swarmplan_core::run::{run, RunRequest};
 use swarmplan_core::world::World;
-use swarmplan_io::scenario::{build_world, load_spec, ScenarioError};
+use swarmplan_io::scenario::{build_world, ScenarioError};
+
+use swarmplan_io::catalog::load_spec;
 use thiserror::Error;
 
 use crate::matrix::{ExperimentSpec, MatrixError, RunKey, Shard};

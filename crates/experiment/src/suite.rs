@@ -90,7 +90,7 @@ pub fn suite_names() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use swarmplan_io::scenario::load_spec;
+    use swarmplan_io::catalog::load_spec;
 
     #[test]
     fn every_suite_lists_distinct_loadable_scenarios() {

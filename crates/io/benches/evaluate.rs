@@ -30,7 +30,9 @@ use swarmplan_core::problem::BlockProblem;
 use swarmplan_core::problem::Problem;
 use swarmplan_core::rng::rng_from_seed;
 use swarmplan_core::run::{run, RunRequest};
-use swarmplan_io::scenario::{build_world, load_spec};
+use swarmplan_io::scenario::build_world;
+
+use swarmplan_io::catalog::load_spec;
 
 /// Evaluates the vectors `xs` in turn.
 fn cycle(c: &mut Criterion, name: &str, problem: &PlanningProblem<'_>, xs: &[Vec<f64>]) {

@@ -11,7 +11,9 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use swarmplan_core::method::Method;
 use swarmplan_core::optim::{Budget, OptimizerParams};
 use swarmplan_core::run::{run, RunRequest};
-use swarmplan_io::scenario::{build_world, load_spec};
+use swarmplan_io::scenario::build_world;
+
+use swarmplan_io::catalog::load_spec;
 
 fn request(method: &str, seed: u64) -> RunRequest {
     RunRequest {

@@ -17,7 +17,9 @@ use swarmplan_core::run::{run, RunRequest};
 use swarmplan_core::timing::TimedPlan;
 use swarmplan_core::world::spec::CommRequirement;
 use swarmplan_core::world::World;
-use swarmplan_io::scenario::{build_world, load_spec};
+use swarmplan_io::scenario::build_world;
+
+use swarmplan_io::catalog::load_spec;
 
 fn request(seed: u64) -> RunRequest {
     RunRequest {

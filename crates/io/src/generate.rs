@@ -20,7 +20,9 @@ use swarmplan_core::world::threat::Threat;
 use thiserror::Error;
 
 use crate::dem::{read_terrain, DemError, DemOptions};
-use crate::scenario::{load_spec, ScenarioError};
+use crate::scenario::ScenarioError;
+
+use crate::scenario::load_builtin;
 
 /// Clear distance between a threat's edge and every start and the goal, metres.
 pub const CLEAR_M: f64 = 60.0;
@@ -336,7 +338,7 @@ pub fn generate(req: &GenerateRequest) -> Result<ScenarioSpec, GenerateError> {
     if req.comm_windows > 20 {
         return Err(GenerateError::Windows(req.comm_windows));
     }
-    let mut spec = load_spec("paper-case1")?.spec;
+    let mut spec = load_builtin("paper-case1")?.spec;
     let mut rng = rng_from_seed(derive_seed(req.seed, &["scenario-generate"], 0));
     let name = req.name();
     spec.description = format!(

@@ -2,6 +2,7 @@
 //! georeferencing and mission exports live here so that `swarmplan-core` stays free of I/O.
 
 pub mod artifact;
+pub mod catalog;
 
 pub mod atomic;
 pub mod convergence;

@@ -36,7 +36,9 @@ use thiserror::Error;
 
 use crate::generate::{free_pace, size_batteries};
 use crate::reference_data::shared_dir;
-use crate::scenario::{load_spec, ScenarioError};
+use crate::scenario::ScenarioError;
+
+use crate::scenario::load_builtin;
 
 /// UAVs of an outside scenario named without `-uN` (the paper's fleet).
 pub const DEFAULT_UAVS: usize = 5;
@@ -173,7 +175,7 @@ pub fn from_instance(path: &Path, uavs: usize, name: &str) -> Result<ScenarioSpe
             looked: path.with_extension("asc.gz"),
         })?;
 
-    let mut spec = load_spec("paper-case1").map_err(Box::new)?.spec;
+    let mut spec = load_builtin("paper-case1").map_err(Box::new)?.spec;
     spec.name = name.into();
     spec.description = format!(
         "outside benchmark instance {} (Shehadeh & Kudela's generator): {} threats, {} UAVs from one start",

@@ -16,7 +16,9 @@ use crate::convergence::{
     read_convergence, write_convergence, ConvergenceColumns, ConvergenceError,
 };
 use crate::plan_file::{plan_file, read_plan, PlanFileError, Provenance};
-use crate::scenario::{load_spec, to_toml, LoadedSpec, ScenarioError};
+use crate::scenario::{to_toml, LoadedSpec, ScenarioError};
+
+use crate::catalog::load_spec;
 
 /// A plan folder's file that cannot be written or read.
 #[derive(Debug, Error)]

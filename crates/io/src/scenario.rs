@@ -107,15 +107,6 @@ pub fn builtin_names() -> Vec<&'static str> {
     BUILTIN.iter().map(|(n, _)| *n).collect()
 }
 
-/// Whether `name` names a scenario (built-in, generated or an outside instance) rather than
-/// a file: what [`load_spec`] tries before reading a path.
-#[must_use]
-pub fn is_scenario_name(name: &str) -> bool {
-    BUILTIN.iter().any(|(n, _)| *n == name)
-        || crate::generate::GenerateRequest::from_name(name).is_some()
-        || crate::outside::parse_name(name).is_some()
-}
-
 /// A scenario spec with where it came from.
 #[derive(Debug, Clone)]
 pub struct LoadedSpec {
@@ -129,45 +120,48 @@ pub struct LoadedSpec {
     pub text: String,
 }
 
-/// Reads a built-in scenario by name, a generated one by its name
-/// ([`crate::generate::GenerateRequest::name`], e.g. `gen-s3-u8-t12-w1`), or a scenario
-/// file by path.
-pub fn load_spec(name_or_path: &str) -> Result<LoadedSpec, ScenarioError> {
-    if let Some((name, text)) = BUILTIN.iter().find(|(n, _)| *n == name_or_path) {
-        let origin = format!("builtin:{name}");
-        return Ok(LoadedSpec {
-            spec: parse_spec(text, &origin)?,
-            origin,
-            base_dir: PathBuf::from("."),
-            text: (*text).to_string(),
+/// Reads the built-in scenario `name` (`paper-case1`, `tiny`, ...); `Unknown` for any other
+/// name. Names of every kind (generated, outside instances) and files:
+/// [`crate::catalog::load_spec`].
+pub fn load_builtin(name: &str) -> Result<LoadedSpec, ScenarioError> {
+    let Some((name, text)) = BUILTIN.iter().find(|(n, _)| *n == name) else {
+        return Err(ScenarioError::Unknown {
+            name: name.to_string(),
         });
-    }
-    // Scenarios made from their name: generated ones and the outside instances.
-    let made = |source: &str, spec: Result<ScenarioSpec, String>| {
-        let spec = spec.map_err(|message| ScenarioError::Generated {
-            name: name_or_path.to_string(),
-            message,
-        })?;
-        Ok(LoadedSpec {
-            text: to_toml(&spec),
-            spec,
-            origin: format!("{source}:{name_or_path}"),
-            base_dir: PathBuf::from("."),
-        })
     };
-    if let Some(req) = crate::generate::GenerateRequest::from_name(name_or_path) {
-        return made(
-            "generated",
-            crate::generate::generate(&req).map_err(|e| e.to_string()),
-        );
-    }
-    if let Some(spec) = crate::outside::load_named(name_or_path) {
-        return made("outside", spec.map_err(|e| e.to_string()));
-    }
-    let path = Path::new(name_or_path);
+    let origin = format!("builtin:{name}");
+    Ok(LoadedSpec {
+        spec: parse_spec(text, &origin)?,
+        origin,
+        base_dir: PathBuf::from("."),
+        text: (*text).to_string(),
+    })
+}
+
+/// A scenario made from its name (`source` is `generated` or `outside`), or the reason it
+/// could not be made.
+pub fn made_from_name(
+    source: &str,
+    name: &str,
+    spec: Result<ScenarioSpec, String>,
+) -> Result<LoadedSpec, ScenarioError> {
+    let spec = spec.map_err(|message| ScenarioError::Generated {
+        name: name.to_string(),
+        message,
+    })?;
+    Ok(LoadedSpec {
+        text: to_toml(&spec),
+        spec,
+        origin: format!("{source}:{name}"),
+        base_dir: PathBuf::from("."),
+    })
+}
+
+/// Reads the scenario file at `path`; `Unknown` when there is none.
+pub fn load_file(path: &Path) -> Result<LoadedSpec, ScenarioError> {
     if !path.exists() {
         return Err(ScenarioError::Unknown {
-            name: name_or_path.to_string(),
+            name: path.display().to_string(),
         });
     }
     let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Read {
@@ -196,7 +190,7 @@ pub fn parse_spec(text: &str, origin: &str) -> Result<ScenarioSpec, ScenarioErro
     // Said here, naming the file, rather than by the first export that needs the frame.
     if let Some(g) = &spec.geo {
         let [lat, lon, alt] = g.origin;
-        crate::geo::check_tangent_origin(
+        crate::geo::frame::check_tangent_origin(
             crate::geo::ellipsoid::Geodetic::new(lat, lon, alt),
             "geo.origin",
         )
@@ -287,6 +281,7 @@ pub fn build_world_noted(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::catalog::load_spec;
 
     #[test]
     fn every_builtin_parses_and_builds() {

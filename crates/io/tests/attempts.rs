@@ -9,7 +9,9 @@ use swarmplan_core::method::Method;
 use swarmplan_core::optim::{Budget, OptimizerParams};
 use swarmplan_core::run::{run, RunRequest};
 use swarmplan_core::world::World;
-use swarmplan_io::scenario::{build_world, load_spec};
+use swarmplan_io::scenario::build_world;
+
+use swarmplan_io::catalog::load_spec;
 
 fn world(name: &str) -> World {
     build_world(&load_spec(name).unwrap(), None).unwrap()

@@ -19,7 +19,9 @@ use swarmplan_core::world::World;
 use swarmplan_io::export::{export_plan, ExportFormat, Mission};
 use swarmplan_io::geo::{resolve_frame, Geodetic, LocalFrame};
 use swarmplan_io::import::{parse_csv, parse_geojson, read_exported_plan};
-use swarmplan_io::scenario::{build_world, load_spec};
+use swarmplan_io::scenario::build_world;
+
+use swarmplan_io::catalog::load_spec;
 
 const ORIGIN: Geodetic = Geodetic::new(-10.45, 105.62, 30.0);
 

@@ -23,7 +23,9 @@ use swarmplan_core::problem::Problem;
 use swarmplan_core::rng::rng_from_seed;
 use swarmplan_core::world::spec::{ObjectivePreset, TimingPolicy};
 use swarmplan_core::world::World;
-use swarmplan_io::scenario::{build_world, load_spec};
+use swarmplan_io::scenario::build_world;
+
+use swarmplan_io::catalog::load_spec;
 
 /// paper-case2 (common arrival), gen-s2-u8-t12-shared with cruise timing, gen-s1-u10-t12,
 /// and paper-case2 and the cruise one again with the fleet's pace free (a change to one

@@ -4,7 +4,9 @@
 #![allow(clippy::unwrap_used)] // tests fail loudly by design
 
 use swarmplan_io::reference_data::reference_files;
-use swarmplan_io::scenario::{build_world, load_spec};
+use swarmplan_io::scenario::build_world;
+
+use swarmplan_io::catalog::load_spec;
 
 #[test]
 fn outside_instances_load_as_scenarios() {

@@ -7,7 +7,9 @@
 use swarmplan_core::cost::assess;
 use swarmplan_core::feasibility::{FeasibilityProfile, ViolationKind};
 use swarmplan_core::plan::Plan;
-use swarmplan_io::scenario::{build_world, load_spec};
+use swarmplan_io::scenario::build_world;
+
+use swarmplan_io::catalog::load_spec;
 
 #[test]
 fn the_paper_profile_counts_only_its_hard_kinds_and_costs_the_same() {

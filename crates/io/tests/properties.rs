@@ -13,7 +13,9 @@ use swarmplan_core::encoding::{angle::Angle, build, EncodingKind, Frame, InitKin
 use swarmplan_core::planning::PlanningProblem;
 use swarmplan_core::problem::Problem;
 use swarmplan_core::world::World;
-use swarmplan_io::scenario::{build_world, load_spec};
+use swarmplan_io::scenario::build_world;
+
+use swarmplan_io::catalog::load_spec;
 
 fn world() -> &'static World {
     static W: OnceLock<World> = OnceLock::new();

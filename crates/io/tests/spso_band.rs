@@ -9,7 +9,9 @@ use swarmplan_core::method::Method;
 use swarmplan_core::optim::{Budget, OptimizerParams};
 use swarmplan_core::run::{run, RunRequest};
 use swarmplan_io::reference_data::reference_file;
-use swarmplan_io::scenario::{build_world, load_spec};
+use swarmplan_io::scenario::build_world;
+
+use swarmplan_io::catalog::load_spec;
 
 #[test]
 fn spso_mean_best_cost_is_in_the_reference_band() {

@@ -11,7 +11,9 @@ use swarmplan_core::cost::assess;
 use swarmplan_core::cost::TermId;
 use swarmplan_core::encoding::{build, EncodingKind};
 use swarmplan_io::reference_data::reference_files;
-use swarmplan_io::scenario::{build_world, load_spec};
+use swarmplan_io::scenario::build_world;
+
+use swarmplan_io::catalog::load_spec;
 
 fn num(v: &serde_json::Value) -> f64 {
     let s = v

@@ -9,7 +9,9 @@ use swarmplan_core::optim::{Budget, OptimizerParams};
 use swarmplan_core::run::{run, RunRequest};
 use swarmplan_core::world::World;
 use swarmplan_io::generate::{generate, GenerateRequest};
-use swarmplan_io::scenario::{build_world, load_spec, LoadedSpec};
+use swarmplan_io::scenario::{build_world, LoadedSpec};
+
+use swarmplan_io::catalog::load_spec;
 
 fn request(evaluations: u64, seed: u64) -> RunRequest {
     RunRequest {

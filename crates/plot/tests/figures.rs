@@ -11,7 +11,9 @@ use swarmplan_core::optim::OptimizerParams;
 use swarmplan_core::plan::Plan;
 use swarmplan_core::world::World;
 use swarmplan_experiment::record::RunRecord;
-use swarmplan_io::scenario::{build_world, load_spec};
+use swarmplan_io::scenario::build_world;
+
+use swarmplan_io::catalog::load_spec;
 use swarmplan_plot::{
     bench_boxplots, comm_timeline, convergence_bench, convergence_run, performance_profile,
     top_view, view_3d, PerUav, PlotError, Target, Written,

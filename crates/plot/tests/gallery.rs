@@ -19,7 +19,9 @@ use swarmplan_core::optim::OptimizerParams;
 use swarmplan_experiment::record::RunRecord;
 use swarmplan_experiment::store::read_records;
 use swarmplan_io::plan_file::{read_plan, Provenance};
-use swarmplan_io::scenario::{build_world, load_spec};
+use swarmplan_io::scenario::build_world;
+
+use swarmplan_io::catalog::load_spec;
 use swarmplan_plot::{
     bench_boxplots, comm_timeline, convergence_bench, convergence_run, top_view, view_3d, PerUav,
 };

@@ -108,7 +108,7 @@ fn recorded_files_reachable(spec: &ExperimentSpec, stored: &Path) -> Result<()> 
     let files = spec
         .scenarios
         .iter()
-        .filter(|s| !swarmplan_io::scenario::is_scenario_name(s))
+        .filter(|s| !swarmplan_io::catalog::is_scenario_name(s))
         .chain(spec.terrain.as_ref());
     for f in files {
         anyhow::ensure!(
@@ -250,7 +250,7 @@ fn relative_to(mut spec: ExperimentSpec, dir: &Path) -> ExperimentSpec {
         from_cwd.unwrap_or(joined).display().to_string()
     };
     for s in &mut spec.scenarios {
-        if !swarmplan_io::scenario::is_scenario_name(s) {
+        if !swarmplan_io::catalog::is_scenario_name(s) {
             *s = resolve(s);
         }
     }
@@ -266,7 +266,7 @@ fn relative_to(mut spec: ExperimentSpec, dir: &Path) -> ExperimentSpec {
 fn same_file_twice(scenarios: &[String]) -> Result<()> {
     let mut seen = std::collections::HashMap::new();
     for s in scenarios {
-        if swarmplan_io::scenario::is_scenario_name(s) {
+        if swarmplan_io::catalog::is_scenario_name(s) {
             continue;
         }
         if let Ok(file) = std::fs::canonicalize(s) {
@@ -324,7 +324,7 @@ pub fn run_bench(args: &BenchArgs) -> Result<()> {
     // Scenarios no plan can satisfy are said once, before the runs start; a scenario that
     // does not load, or a bad --shard, is said before the folder is made.
     for name in &spec.scenarios {
-        let loaded = swarmplan_io::scenario::load_spec(name)?;
+        let loaded = swarmplan_io::catalog::load_spec(name)?;
         super::warn_unreachable(&loaded.origin, &loaded.spec);
     }
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?;

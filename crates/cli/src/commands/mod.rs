@@ -13,7 +13,9 @@ use anyhow::Result;
 use swarmplan_core::world::spec::ScenarioSpec;
 use swarmplan_core::world::unreachable::unreachable_feasibility;
 use swarmplan_core::world::World;
-use swarmplan_io::scenario::{build_world_noted, load_spec};
+use swarmplan_io::scenario::build_world_noted;
+
+use swarmplan_io::catalog::load_spec;
 
 use crate::ScenarioArgs;
 

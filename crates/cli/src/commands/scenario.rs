@@ -1,7 +1,9 @@
 //! `swarmplan scenario list|show`.
 
 use anyhow::Result;
-use swarmplan_io::scenario::{load_spec, to_toml, BUILTIN};
+use swarmplan_io::scenario::{to_toml, BUILTIN};
+
+use swarmplan_io::catalog::load_spec;
 
 pub fn list() -> Result<()> {
     for (name, _) in BUILTIN {

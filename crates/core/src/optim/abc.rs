@@ -26,7 +26,7 @@
 use rand::Rng as _;
 use serde::{Deserialize, Serialize};
 
-use super::params::{check, ParamsError};
+use super::config::{check, ParamsError};
 use super::swarm::{into_bound, row, row_mut, BestSoFar};
 use super::{Evaluator, Optimizer};
 use crate::problem::Evaluation;
@@ -54,9 +54,9 @@ impl AbcParams {
     /// Checks the colony size; the error names the field.
     pub fn validate(&self) -> Result<(), ParamsError> {
         check(
-            super::params::POPULATION_RANGE.contains(&self.population),
+            super::config::POPULATION_RANGE.contains(&self.population),
             "population",
-            super::params::POPULATION_EXPECTED,
+            super::config::POPULATION_EXPECTED,
             self.population,
         )
     }
@@ -74,7 +74,7 @@ impl Default for AbcParams {
     }
 }
 
-impl super::params::OptimizerConfig for AbcParams {
+impl super::config::OptimizerConfig for AbcParams {
     fn population(&self) -> usize {
         self.population
     }

@@ -46,7 +46,7 @@ use nalgebra::{DMatrix, DVector, SymmetricEigen};
 use rand_distr::{Distribution, StandardNormal};
 use serde::{Deserialize, Serialize};
 
-use super::params::{check, ParamsError};
+use super::config::{check, ParamsError};
 use super::swarm::BestSoFar;
 use super::{Evaluator, Optimizer};
 use crate::problem::{Bound, Evaluation};
@@ -113,7 +113,7 @@ impl CmaesParams {
             self.sigma,
         )?;
         check(
-            self.population == 0 || super::params::POPULATION_RANGE.contains(&self.population),
+            self.population == 0 || super::config::POPULATION_RANGE.contains(&self.population),
             "population",
             "0 (automatic) or a whole number in [4, 100000]",
             self.population,
@@ -127,7 +127,7 @@ impl Default for CmaesParams {
     }
 }
 
-impl super::params::OptimizerConfig for CmaesParams {
+impl super::config::OptimizerConfig for CmaesParams {
     fn population(&self) -> usize {
         self.population
     }

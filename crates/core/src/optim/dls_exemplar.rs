@@ -22,8 +22,8 @@
 use rand::Rng as _;
 use serde::{Deserialize, Serialize};
 
+use super::config::{check, ParamsError};
 use super::dimensional::build_exemplar_into;
-use super::params::{check, ParamsError};
 use super::pso::{PsoParams, Swarm};
 use super::swarm::{row, row_mut};
 use super::{Evaluator, Optimizer};
@@ -66,7 +66,7 @@ impl Default for DlsExemplarParams {
     }
 }
 
-impl super::params::OptimizerConfig for DlsExemplarParams {
+impl super::config::OptimizerConfig for DlsExemplarParams {
     fn population(&self) -> usize {
         self.pso.population
     }

@@ -36,8 +36,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::config::{check, ParamsError};
 use super::dimensional::build_exemplar_into;
-use super::params::{check, ParamsError};
 use super::pso::{PsoParams, Swarm};
 use super::swarm::{row, row_mut};
 use super::{Evaluator, Optimizer};
@@ -86,7 +86,7 @@ impl Default for DlsPaperParams {
     }
 }
 
-impl super::params::OptimizerConfig for DlsPaperParams {
+impl super::config::OptimizerConfig for DlsPaperParams {
     fn population(&self) -> usize {
         self.pso.population
     }

@@ -21,7 +21,7 @@
 use rand::Rng as _;
 use serde::{Deserialize, Serialize};
 
-use super::params::{check, ParamsError};
+use super::config::{check, ParamsError};
 use super::swarm::{into_bound, row, row_mut};
 use super::{Evaluator, Optimizer};
 use crate::problem::Evaluation;
@@ -42,9 +42,9 @@ impl GwoParams {
     /// Checks the pack size; the error names the field.
     pub fn validate(&self) -> Result<(), ParamsError> {
         check(
-            super::params::POPULATION_RANGE.contains(&self.population),
+            super::config::POPULATION_RANGE.contains(&self.population),
             "population",
-            super::params::POPULATION_EXPECTED,
+            super::config::POPULATION_EXPECTED,
             self.population,
         )
     }
@@ -56,7 +56,7 @@ impl Default for GwoParams {
     }
 }
 
-impl super::params::OptimizerConfig for GwoParams {
+impl super::config::OptimizerConfig for GwoParams {
     fn population(&self) -> usize {
         self.population
     }

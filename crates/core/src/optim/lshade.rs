@@ -34,7 +34,7 @@ use rand::Rng as _;
 use rand_distr::{Cauchy, Distribution, Normal};
 use serde::{Deserialize, Serialize};
 
-use super::params::{check, ParamsError};
+use super::config::{check, ParamsError};
 use super::swarm::{row, row_mut, BestSoFar};
 use super::{Evaluator, Optimizer};
 use crate::problem::{Bound, Evaluation};
@@ -116,7 +116,7 @@ impl Default for LshadeParams {
     }
 }
 
-impl super::params::OptimizerConfig for LshadeParams {
+impl super::config::OptimizerConfig for LshadeParams {
     fn population(&self) -> usize {
         self.max_population
     }

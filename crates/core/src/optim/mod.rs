@@ -81,6 +81,7 @@
 pub mod abc;
 pub mod cancel;
 pub mod cmaes;
+pub mod config;
 pub mod cooperative;
 pub mod dimensional;
 pub mod dls_exemplar;

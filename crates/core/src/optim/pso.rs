@@ -33,7 +33,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::params::{check, ParamsError};
+use super::config::{check, ParamsError};
 use super::swarm::{move_coordinate, row, row_mut, BestSoFar, VelocityRule};
 use super::{Evaluator, Optimizer, Progress};
 use crate::problem::{Bound, Evaluation};
@@ -90,9 +90,9 @@ impl PsoParams {
     /// Checks every field; the error names the first bad one.
     pub fn validate(&self) -> Result<(), ParamsError> {
         check(
-            super::params::POPULATION_RANGE.contains(&self.population),
+            super::config::POPULATION_RANGE.contains(&self.population),
             "population",
-            super::params::POPULATION_EXPECTED,
+            super::config::POPULATION_EXPECTED,
             self.population,
         )?;
         check(
@@ -140,7 +140,7 @@ impl Default for PsoParams {
     }
 }
 
-impl super::params::OptimizerConfig for PsoParams {
+impl super::config::OptimizerConfig for PsoParams {
     fn population(&self) -> usize {
         self.population
     }

@@ -21,7 +21,7 @@
 use rand::Rng as _;
 use serde::{Deserialize, Serialize};
 
-use super::params::{check, ParamsError};
+use super::config::{check, ParamsError};
 use super::swarm::{into_bound, row, row_mut, BestSoFar};
 use super::{Evaluator, Optimizer};
 use crate::problem::Evaluation;
@@ -50,9 +50,9 @@ impl QpsoParams {
     /// Checks every field; the error names the first bad one.
     pub fn validate(&self) -> Result<(), ParamsError> {
         check(
-            super::params::POPULATION_RANGE.contains(&self.population),
+            super::config::POPULATION_RANGE.contains(&self.population),
             "population",
-            super::params::POPULATION_EXPECTED,
+            super::config::POPULATION_EXPECTED,
             self.population,
         )?;
         check(
@@ -83,7 +83,7 @@ impl Default for QpsoParams {
     }
 }
 
-impl super::params::OptimizerConfig for QpsoParams {
+impl super::config::OptimizerConfig for QpsoParams {
     fn population(&self) -> usize {
         self.population
     }

@@ -27,7 +27,7 @@
 //! than 2 cm per kilometre from the origin (an undulation of 100 m at most).
 
 pub mod ellipsoid;
-mod frame;
+pub mod frame;
 mod new_scenario;
 mod projected;
 mod scenario;

@@ -20,7 +20,9 @@ use super::ellipsoid::Geodetic;
 use super::frame::LocalFrame;
 use super::GeoError;
 use crate::dem::{read_terrain, DemFrame, DemOptions};
-use crate::scenario::{load_spec, parse_spec, to_toml};
+use crate::scenario::{parse_spec, to_toml};
+
+use crate::scenario::load_builtin;
 
 /// What `scenario new` was asked for.
 #[derive(Debug, Clone)]
@@ -167,7 +169,7 @@ pub fn new_scenario(req: &NewScenarioRequest<'_>) -> Result<NewScenario, GeoErro
         ));
     }
 
-    let mut spec = load_spec("paper-case1")?.spec;
+    let mut spec = load_builtin("paper-case1")?.spec;
     let ratio = distance / paper_distance(&spec);
     spec.name = req.name.clone();
     spec.description = format!(

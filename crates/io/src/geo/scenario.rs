@@ -10,7 +10,9 @@ use super::ellipsoid::Geodetic;
 use super::frame::LocalFrame;
 use super::GeoError;
 use crate::dem::{read_terrain, DemFrame, DemOptions};
-use crate::scenario::{load_spec, LoadedSpec};
+use crate::scenario::LoadedSpec;
+
+use crate::catalog::load_spec;
 use swarmplan_core::world::spec::TerrainFrame;
 
 /// Which input a frame came from.

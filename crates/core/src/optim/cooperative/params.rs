@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::Cooperative;
-use crate::optim::params::{check, ParamsError};
+use crate::optim::config::{check, ParamsError};
 use crate::optim::Optimizer;
 
 /// Parameters of the cooperative optimizer.
@@ -118,9 +118,9 @@ impl CoopParams {
     /// Checks every field that has limits; the error names the first bad one.
     pub fn validate(&self) -> Result<(), ParamsError> {
         check(
-            crate::optim::params::POPULATION_RANGE.contains(&self.population),
+            crate::optim::config::POPULATION_RANGE.contains(&self.population),
             "population",
-            crate::optim::params::POPULATION_EXPECTED,
+            crate::optim::config::POPULATION_EXPECTED,
             self.population,
         )?;
         check(
@@ -181,7 +181,7 @@ impl Default for CoopParams {
     }
 }
 
-impl crate::optim::params::OptimizerConfig for CoopParams {
+impl crate::optim::config::OptimizerConfig for CoopParams {
     fn population(&self) -> usize {
         self.population
     }
