@@ -279,6 +279,9 @@ pub(crate) fn equal_aspect_margins(
     [m + ew / 2, m + ew - ew / 2, m + eh / 2, m + eh - eh / 2]
 }
 
+/// The map's chart: x and y in metres at equal scale.
+type MapChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<Axis, Axis>>;
+
 impl Figure for TopView<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<(), DB> {
         let s = Scale::of(root.dim_in_pixel());
@@ -305,6 +308,28 @@ impl Figure for TopView<'_> {
                 Axis::linear(self.y.0, self.y.1),
             )?;
 
+        self.draw_ground(&mut chart, s)?;
+        self.draw_hazards(&mut chart, s)?;
+        let flown = self.draw_paths(&mut chart, s)?;
+        let mut labels = self.draw_marks(root, &chart, s)?;
+        self.label_departures(root, &chart, &flown, &mut labels, s)?;
+        self.draw_outages(root, &chart, &mut labels, s)?;
+        self.label_windows(root, &chart, &mut labels, s)?;
+        // Side panel: colour bar above, legend below.
+        let (_, sh) = side.dim_in_pixel();
+        let (bar, rest) = side.split_vertically(sh * 2 / 5);
+        self.draw_colour_bar(&bar, s)?;
+        legend::draw(&rest, &self.legend_entries(s), s.off(10.0), s)
+    }
+}
+
+impl TopView<'_> {
+    /// Relief, then axes, then contours: the ground everything else is drawn on.
+    fn draw_ground<DB: DrawingBackend>(
+        &self,
+        chart: &mut MapChart<'_, DB>,
+        s: Scale,
+    ) -> DrawResult<(), DB> {
         // Relief first, then axes, then everything else on top.
         let (px, py) = chart.plotting_area().get_pixel_range();
         let (pw, ph) = ((px.end - px.start).max(1), (py.end - py.start).max(1));
@@ -338,7 +363,16 @@ impl Figure for TopView<'_> {
             };
             chart.draw_series(segs.iter().map(|q| PathElement::new(q.to_vec(), style)))?;
         }
+        Ok(())
+    }
 
+    /// Interference disks and threats (hard zone filled, danger band dashed), then the
+    /// halo of every violating segment, drawn before the paths.
+    fn draw_hazards<DB: DrawingBackend>(
+        &self,
+        chart: &mut MapChart<'_, DB>,
+        s: Scale,
+    ) -> DrawResult<(), DB> {
         let span = (self.x.1 - self.x.0).max(self.y.1 - self.y.0);
         let (dash, gap) = (span / 120.0, span / 200.0);
         for win in self.world.channel().interference() {
@@ -384,7 +418,15 @@ impl Figure for TopView<'_> {
                 style::VIOLATION.stroke_width(s.px(10.0)),
             )))?;
         }
+        Ok(())
+    }
 
+    /// Each UAV's flown path and its waypoints; returns what is flown.
+    fn draw_paths<DB: DrawingBackend>(
+        &self,
+        chart: &mut MapChart<'_, DB>,
+        s: Scale,
+    ) -> DrawResult<TimedPlan, DB> {
         // The line is what is flown (arcs through the corners under the strict profile),
         // the dots are the waypoints.
         let flown = TimedPlan::flown(self.world, self.plan);
@@ -398,7 +440,17 @@ impl Figure for TopView<'_> {
             let pts: Vec<(f64, f64)> = path.waypoints.iter().map(|p| (p.x, p.y)).collect();
             chart.draw_series(pts.iter().map(|p| Circle::new(*p, s.px(4.5), c.filled())))?;
         }
+        Ok(flown)
+    }
 
+    /// Ground nodes with their names, and a diamond with its kind at every violation that
+    /// has a place; returns the label placer with their room reserved.
+    fn draw_marks<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        chart: &MapChart<'_, DB>,
+        s: Scale,
+    ) -> DrawResult<Labels, DB> {
         // Ground nodes, their labels reserved before any outage label is placed.
         let (bx, by) = chart.plotting_area().get_pixel_range();
         let mut labels = Labels::new([bx.start, by.start, bx.end, by.end]);
@@ -439,8 +491,18 @@ impl Figure for TopView<'_> {
                 boxed_label(root, tl, (w, h), place.label.clone(), text, s)?;
             }
         }
+        Ok(labels)
+    }
 
-        // Departure delays: a UAV that hovers at its start before it leaves, labelled there.
+    /// Departure delays: a UAV that hovers at its start before it leaves, labelled there.
+    fn label_departures<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        chart: &MapChart<'_, DB>,
+        flown: &TimedPlan,
+        labels: &mut Labels,
+        s: Scale,
+    ) -> DrawResult<(), DB> {
         for (i, f) in flown.paths.iter().enumerate() {
             if f.depart <= 0.0 || !f.depart.is_finite() {
                 continue;
@@ -455,9 +517,18 @@ impl Figure for TopView<'_> {
                 boxed_label(root, tl, (w, h), label, text, s)?;
             }
         }
+        Ok(())
+    }
 
-        // Outages: a mark at every step out of contact; one label per outage with its
-        // times, placed where it hides no other label (a leader line when moved away).
+    /// Outages: a mark at every step out of contact; one label per outage with its
+    /// times, placed where it hides no other label (a leader line when moved away).
+    fn draw_outages<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        chart: &MapChart<'_, DB>,
+        labels: &mut Labels,
+        s: Scale,
+    ) -> DrawResult<(), DB> {
         let mut outages = Vec::new();
         for i in 0..self.trace.uav_count() {
             let c = style::uav_colour(i);
@@ -507,8 +578,17 @@ impl Figure for TopView<'_> {
             root.draw(&Rectangle::new(rect, c.mix(0.6).stroke_width(1)))?;
             root.draw(&Text::new(label, tl, text))?;
         }
+        Ok(())
+    }
 
-        // Interference windows: a label above each disk, on a white ground.
+    /// Interference windows: a label above each disk, on a white ground.
+    fn label_windows<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        chart: &MapChart<'_, DB>,
+        labels: &mut Labels,
+        s: Scale,
+    ) -> DrawResult<(), DB> {
         for (k, win) in self.world.channel().interference().iter().enumerate() {
             let label = format!(
                 "W{}: {}-{} s, {} dB",
@@ -524,12 +604,7 @@ impl Figure for TopView<'_> {
                 boxed_label(root, tl, (w, h), label, text, s)?;
             }
         }
-
-        // Side panel: colour bar above, legend below.
-        let (_, sh) = side.dim_in_pixel();
-        let (bar, rest) = side.split_vertically(sh * 2 / 5);
-        self.draw_colour_bar(&bar, s)?;
-        legend::draw(&rest, &self.legend_entries(s), s.off(10.0), s)
+        Ok(())
     }
 }
 

@@ -229,6 +229,10 @@ impl View3d<'_> {
     }
 }
 
+/// The 3-D chart: (east, altitude, north) in metres.
+type SceneChart<'a, DB> =
+    ChartContext<'a, DB, plotters::coord::ranged3d::Cartesian3d<Axis, Axis, Axis>>;
+
 impl Figure for View3d<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult<(), DB> {
         let s = Scale::of(root.dim_in_pixel());
@@ -276,6 +280,22 @@ impl Figure for View3d<'_> {
             .z_labels(6)
             .draw()?;
 
+        self.draw_terrain(&mut chart)?;
+        self.draw_shadows(&mut chart, s)?;
+        self.draw_threats(&mut chart, s)?;
+        self.draw_paths(&mut chart, s)?;
+        self.draw_marks(root, &chart, s)?;
+        self.draw_axis_titles(root, chart.as_coord_spec(), s)?;
+        legend::draw(&side, &self.legend_entries(s, exaggeration), s.off(30.0), s)
+    }
+}
+
+impl View3d<'_> {
+    /// The terrain's facets, farthest first (painter's order).
+    fn draw_terrain<DB: DrawingBackend>(
+        &self,
+        chart: &mut SceneChart<'_, DB>,
+    ) -> DrawResult<(), DB> {
         // Painter's order: farthest facets first.
         let mut facets: Vec<(i32, Quad, RGBColor)> = {
             let coord = chart.as_coord_spec();
@@ -297,9 +317,16 @@ impl Figure for View3d<'_> {
             ring.push(q[0]);
             chart.draw_series(std::iter::once(PathElement::new(ring, edge)))?;
         }
+        Ok(())
+    }
 
+    /// Each UAV's flown path's shadow, draped on the ground.
+    fn draw_shadows<DB: DrawingBackend>(
+        &self,
+        chart: &mut SceneChart<'_, DB>,
+        s: Scale,
+    ) -> DrawResult<(), DB> {
         let t = self.world.terrain();
-        // Path shadows, draped on the ground.
         for (i, p) in self.flown.paths.iter().enumerate() {
             let c = style::uav_colour(i);
             let mut shadow = Vec::new();
@@ -317,7 +344,17 @@ impl Figure for View3d<'_> {
                 style::shade(c, 0.7).mix(0.55).stroke_width(s.px(2.0)),
             )))?;
         }
+        Ok(())
+    }
 
+    /// Threat cylinders: footprint on the ground, a ring at the drawn height, struts, and
+    /// dashes above it (the cylinder goes on).
+    fn draw_threats<DB: DrawingBackend>(
+        &self,
+        chart: &mut SceneChart<'_, DB>,
+        s: Scale,
+    ) -> DrawResult<(), DB> {
+        let t = self.world.terrain();
         let size_of = |i: usize| self.world.spec().uavs.get(i).map_or(1.0, |u| u.size);
         let drone = (0..self.world.uav_count()).map(size_of).fold(0.0, f64::max);
         for th in &self.world.spec().threats {
@@ -358,7 +395,15 @@ impl Figure for View3d<'_> {
                 }
             }
         }
+        Ok(())
+    }
 
+    /// Violating segments' halos, then each UAV's flown path and its waypoints.
+    fn draw_paths<DB: DrawingBackend>(
+        &self,
+        chart: &mut SceneChart<'_, DB>,
+        s: Scale,
+    ) -> DrawResult<(), DB> {
         for seg in &self.marks.segments {
             let ends: Vec<(f64, f64, f64)> = seg.ends.iter().map(|q| (q.x, q.z, q.y)).collect();
             chart.draw_series(std::iter::once(PathElement::new(
@@ -384,7 +429,17 @@ impl Figure for View3d<'_> {
                     .map(|q| Circle::new((q.x, q.z, q.y), s.px(4.0), c.filled())),
             )?;
         }
+        Ok(())
+    }
 
+    /// Ground nodes with their names, and a diamond with its kind at every violation that
+    /// has a place.
+    fn draw_marks<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        chart: &SceneChart<'_, DB>,
+        s: Scale,
+    ) -> DrawResult<(), DB> {
         let text = (FONT, s.font(17.0))
             .into_font()
             .color(&BLACK)
@@ -420,8 +475,6 @@ impl Figure for View3d<'_> {
                 label.clone(),
             ))?;
         }
-
-        self.draw_axis_titles(root, chart.as_coord_spec(), s)?;
-        legend::draw(&side, &self.legend_entries(s, exaggeration), s.off(30.0), s)
+        Ok(())
     }
 }

@@ -139,6 +139,21 @@ fn height(field: &str, v: f64) -> Result<(), SpecError> {
     bounded(field, v, MAX_HEIGHT_M)
 }
 
+/// A sampling step `v` (m) fine enough for a map of this `diagonal`: at most
+/// `MAX_SAMPLES_PER_SEGMENT` samples along it.
+fn fine_enough(field: &str, v: f64, diagonal: f64) -> Result<(), SpecError> {
+    let min_step = diagonal / MAX_SAMPLES_PER_SEGMENT;
+    if v >= min_step {
+        Ok(())
+    } else {
+        Err(err(
+            field,
+            format!("at least {min_step:.3} m on this map (its diagonal {diagonal:.0} m / {MAX_SAMPLES_PER_SEGMENT:.0} samples)"),
+            v,
+        ))
+    }
+}
+
 fn range(field: &str, r: [f64; 2]) -> Result<(), SpecError> {
     if r[0].is_finite() && r[1].is_finite() && r[0] < r[1] {
         Ok(())
@@ -153,6 +168,25 @@ impl ScenarioSpec {
         if self.name.trim().is_empty() {
             return Err(err("name", "a non-empty name", "\"\""));
         }
+        self.validate_geo()?;
+        self.validate_map()?;
+        self.validate_terrain()?;
+        self.validate_threats_and_goal()?;
+        self.validate_uavs()?;
+        self.validate_communication()?;
+        self.validate_energy()?;
+        self.validate_objective()?;
+        self.validate_timing_and_planning()
+    }
+
+    /// The map's diagonal, m: what the finest sampling steps are measured against.
+    fn map_diagonal(&self) -> f64 {
+        let m = &self.map;
+        (m.x[1] - m.x[0]).hypot(m.y[1] - m.y[0])
+    }
+
+    /// `[geo]`: an origin on the Earth.
+    fn validate_geo(&self) -> Result<(), SpecError> {
         if let Some(g) = &self.geo {
             let [lat, lon, alt] = g.origin;
             if !(lat.is_finite() && (-90.0..=90.0).contains(&lat)) {
@@ -171,6 +205,11 @@ impl ScenarioSpec {
             }
             finite("geo.origin", alt)?;
         }
+        Ok(())
+    }
+
+    /// `[map]`: the box, its size, heights and the clearance sampling.
+    fn validate_map(&self) -> Result<(), SpecError> {
         let m = &self.map;
         range("map.x", m.x)?;
         range("map.y", m.y)?;
@@ -198,19 +237,12 @@ impl ScenarioSpec {
         non_negative("map.clearance", m.clearance)?;
         positive("map.clearance_step", m.clearance_step)?;
         let diagonal = (m.x[1] - m.x[0]).hypot(m.y[1] - m.y[0]);
-        let min_step = diagonal / MAX_SAMPLES_PER_SEGMENT;
-        let fine_enough = |field: &str, v: f64| {
-            if v >= min_step {
-                Ok(())
-            } else {
-                Err(err(
-                    field,
-                    format!("at least {min_step:.3} m on this map (its diagonal {diagonal:.0} m / {MAX_SAMPLES_PER_SEGMENT:.0} samples)"),
-                    v,
-                ))
-            }
-        };
-        fine_enough("map.clearance_step", m.clearance_step)?;
+        fine_enough("map.clearance_step", m.clearance_step, diagonal)?;
+        Ok(())
+    }
+
+    /// `[terrain]`: the procedural generator's parameters.
+    fn validate_terrain(&self) -> Result<(), SpecError> {
         self.terrain
             .procedural
             .validate()
@@ -228,6 +260,11 @@ impl ScenarioSpec {
                 pr.cell,
             ));
         }
+        Ok(())
+    }
+
+    /// `[[threats]]` and `[goal]`.
+    fn validate_threats_and_goal(&self) -> Result<(), SpecError> {
         for (k, t) in self.threats.iter().enumerate() {
             coordinate(&format!("threats[{k}].x"), t.x)?;
             coordinate(&format!("threats[{k}].y"), t.y)?;
@@ -240,6 +277,11 @@ impl ScenarioSpec {
         }
         height("goal.position.z", g.position[2])?;
         non_negative("goal.antenna", g.antenna)?;
+        Ok(())
+    }
+
+    /// `[[uavs]]`: at least one, each within its limits.
+    fn validate_uavs(&self) -> Result<(), SpecError> {
         if self.uavs.is_empty() {
             return Err(err("uavs", "at least one UAV", 0));
         }
@@ -277,6 +319,11 @@ impl ScenarioSpec {
             non_negative(&f("size"), u.size)?;
             non_negative(&f("turn_radius"), u.turn_radius)?;
         }
+        Ok(())
+    }
+
+    /// `[communication]`: the channel, the ground nodes (and their horizon tables' memory) and the interference windows.
+    fn validate_communication(&self) -> Result<(), SpecError> {
         let c = &self.communication;
         positive("communication.range", c.range)?;
         non_negative("communication.shadowing_sigma_db", c.shadowing_sigma_db)?;
@@ -291,7 +338,11 @@ impl ScenarioSpec {
         }
         non_negative("communication.max_outage_s", c.max_outage_s)?;
         positive("communication.line_of_sight_step", c.line_of_sight_step)?;
-        fine_enough("communication.line_of_sight_step", c.line_of_sight_step)?;
+        fine_enough(
+            "communication.line_of_sight_step",
+            c.line_of_sight_step,
+            self.map_diagonal(),
+        )?;
         non_negative("communication.outage_base_cost", c.outage_base_cost)?;
         for (k, n) in c.ground_nodes.iter().enumerate() {
             coordinate(
@@ -311,7 +362,8 @@ impl ScenarioSpec {
             let fixed = usize::from(c.ground_station) + 1; // the station and UGV0
             let nodes = fixed + c.ground_nodes.len();
             #[allow(clippy::cast_precision_loss)] // 4096 bins, a checked number of steps
-            let per_node = HORIZON_BINS as f64 * (diagonal / c.line_of_sight_step).ceil().max(1.0);
+            let per_node =
+                HORIZON_BINS as f64 * (self.map_diagonal() / c.line_of_sight_step).ceil().max(1.0);
             #[allow(clippy::cast_precision_loss)]
             if nodes as f64 * per_node > MAX_HORIZON_ENTRIES {
                 let most = (MAX_HORIZON_ENTRIES / per_node).floor() - fixed as f64;
@@ -335,6 +387,11 @@ impl ScenarioSpec {
             positive(&f("radius"), w.radius)?;
             non_negative(&f("loss_db"), w.loss_db)?;
         }
+        Ok(())
+    }
+
+    /// `[energy]`: Eq. 5's weights and the rotary-wing model.
+    fn validate_energy(&self) -> Result<(), SpecError> {
         let e = &self.energy;
         non_negative("energy.alpha", e.alpha)?;
         non_negative("energy.beta", e.beta)?;
@@ -358,6 +415,11 @@ impl ScenarioSpec {
         ] {
             non_negative(&format!("energy.model.{name}"), v)?;
         }
+        Ok(())
+    }
+
+    /// `[objective]`: non-negative weights; the `spso` preset for one UAV only.
+    fn validate_objective(&self) -> Result<(), SpecError> {
         let o = &self.objective;
         for (name, v) in [
             ("length", o.length),
@@ -381,6 +443,11 @@ impl ScenarioSpec {
                 format!("{} UAVs", self.uavs.len()),
             ));
         }
+        Ok(())
+    }
+
+    /// `[timing]` and `[planning]`.
+    fn validate_timing_and_planning(&self) -> Result<(), SpecError> {
         let t = &self.timing;
         non_negative("timing.separation", t.separation)?;
         non_negative("timing.zone_radius", t.zone_radius)?;
