@@ -327,6 +327,9 @@ fn uniform(rng: &mut Rng, lo: f64, hi: f64) -> f64 {
     lo + u * (hi - lo)
 }
 
+/// A map box as (x_min, y_min, x_max, y_max), metres.
+type Extent = (f64, f64, f64, f64);
+
 /// Generates the scenario of `req`.
 pub fn generate(req: &GenerateRequest) -> Result<ScenarioSpec, GenerateError> {
     if req.uavs == 0 || req.uavs > 1000 {
@@ -354,100 +357,13 @@ pub fn generate(req: &GenerateRequest) -> Result<ScenarioSpec, GenerateError> {
         }
     );
     spec.name = name;
-    let mut dem_terrain = None;
-    let (x0, y0, x1, y1) = match &req.terrain {
-        Some(path) => {
-            let dem = read_terrain(Path::new(path), &DemOptions::default())?;
-            spec.terrain.source.clone_from(path);
-            spec.terrain.frame = swarmplan_core::world::spec::TerrainFrame::Georeferenced;
-            let extent = dem.terrain.extent();
-            dem_terrain = Some(dem.terrain);
-            extent
-        }
-        None => {
-            spec.terrain.source = "procedural".into();
-            spec.terrain.procedural.seed = req.seed;
-            let p = &spec.terrain.procedural;
-            (0.0, 0.0, p.width, p.height)
-        }
-    };
-    spec.map.x = [x0, x1];
-    spec.map.y = [y0, y1];
-    let (w, h) = (x1 - x0, y1 - y0);
-
-    // The diagonal: start near one corner, goal near the opposite one.
-    let corner = rng.random_range(0..4_u32);
-    let (fx, fy): (f64, f64) = match corner {
-        0 => (0.15, 0.15),
-        1 => (0.85, 0.15),
-        2 => (0.85, 0.85),
-        _ => (0.15, 0.85),
-    };
-    // Spread starts: a square grid 40 m apart from the start corner towards the interior.
-    let grid = StartGrid {
-        columns: (req.uavs as f64).sqrt().ceil() as usize,
-        towards: [(0.5 - fx).signum(), (0.5 - fy).signum()],
-        uavs: req.uavs,
-        shared: req.shared_start,
-    };
-    let at = |f: [f64; 2]| [x0 + f[0] * w, y0 + f[1] * h];
-    let (start, goal) = match &dem_terrain {
-        None => (at([fx, fy]), at([1.0 - fx, 1.0 - fy])),
-        Some(t) => (
-            gentlest_near(t, [fx, fy], |p| grid.starts(p), at),
-            gentlest_near(t, [1.0 - fx, 1.0 - fy], |p| vec![p], at),
-        ),
-    };
-    let z = spec.goal.position[2];
-    spec.goal.position = [goal[0], goal[1], z];
+    let (extent, dem_terrain) = place_terrain(req, &mut spec)?;
+    // Random draws in a fixed order: the corner, the threats, the windows.
+    let (start, goal) = place_fleet(req, &mut spec, &mut rng, extent, dem_terrain.as_ref())?;
+    let starts: Vec<[f64; 2]> = spec.uavs.iter().map(|u| [u.start[0], u.start[1]]).collect();
+    spec.threats = draw_threats(req, &mut rng, extent, &starts, goal)?;
     let (dx, dy) = (goal[0] - start[0], goal[1] - start[1]);
     let length = dx.hypot(dy);
-    let template = spec.uavs.first().copied().unwrap_or_default();
-    let starts = grid.starts(start);
-    if starts
-        .iter()
-        .any(|p| p[0] < x0 || p[0] > x1 || p[1] < y0 || p[1] > y1)
-    {
-        return Err(GenerateError::StartsDoNotFit(req.uavs));
-    }
-    spec.uavs = starts
-        .iter()
-        .map(|p| UavSpec {
-            start: [p[0], p[1], z],
-            ..template
-        })
-        .collect();
-
-    // Threats, clear of the starts and the goal, disjoint from each other.
-    let short = w.min(h);
-    let mut threats: Vec<Threat> = Vec::with_capacity(req.threats);
-    let mut attempts = 0;
-    while threats.len() < req.threats && attempts < THREAT_DRAWS_PER_THREAT * req.threats.max(1) {
-        attempts += 1;
-        let r = uniform(&mut rng, 0.03 * short, 0.07 * short);
-        let (x, y) = (
-            uniform(&mut rng, x0 + r, x1 - r),
-            uniform(&mut rng, y0 + r, y1 - r),
-        );
-        let clear_of = |p: &[f64; 2]| (x - p[0]).hypot(y - p[1]) >= r + CLEAR_M;
-        if !starts.iter().all(clear_of) || !clear_of(&goal) {
-            continue;
-        }
-        if threats.iter().any(|t| (x - t.x).hypot(y - t.y) < r + t.r) {
-            continue;
-        }
-        threats.push(Threat { x, y, z: 300.0, r });
-    }
-    if threats.len() < req.threats {
-        return Err(GenerateError::Crowded {
-            threats: req.threats,
-            placed: threats.len(),
-            width: w,
-            height: h,
-        });
-    }
-    spec.threats = threats;
-
     spec.communication.interference = (0..req.comm_windows)
         .map(|_| {
             let t = uniform(&mut rng, 0.3, 0.7);
@@ -480,6 +396,124 @@ pub fn generate(req: &GenerateRequest) -> Result<ScenarioSpec, GenerateError> {
         })
     })?;
     Ok(spec)
+}
+
+/// The terrain: the DEM of `req.terrain`, or the procedural relief seeded by `req.seed`;
+/// the map box is its extent. Returns the extent and the DEM's terrain.
+fn place_terrain(
+    req: &GenerateRequest,
+    spec: &mut ScenarioSpec,
+) -> Result<(Extent, Option<Terrain>), GenerateError> {
+    let mut dem_terrain = None;
+    let (x0, y0, x1, y1) = match &req.terrain {
+        Some(path) => {
+            let dem = read_terrain(Path::new(path), &DemOptions::default())?;
+            spec.terrain.source.clone_from(path);
+            spec.terrain.frame = swarmplan_core::world::spec::TerrainFrame::Georeferenced;
+            let extent = dem.terrain.extent();
+            dem_terrain = Some(dem.terrain);
+            extent
+        }
+        None => {
+            spec.terrain.source = "procedural".into();
+            spec.terrain.procedural.seed = req.seed;
+            let p = &spec.terrain.procedural;
+            (0.0, 0.0, p.width, p.height)
+        }
+    };
+    spec.map.x = [x0, x1];
+    spec.map.y = [y0, y1];
+    Ok(((x0, y0, x1, y1), dem_terrain))
+}
+
+/// The fleet at a start near a random corner (a grid 40 m apart when starts are spread) and
+/// UGV0 near the opposite one (on a DEM, the gentlest ground nearby); returns start and goal.
+fn place_fleet(
+    req: &GenerateRequest,
+    spec: &mut ScenarioSpec,
+    rng: &mut Rng,
+    (x0, y0, x1, y1): Extent,
+    dem_terrain: Option<&Terrain>,
+) -> Result<([f64; 2], [f64; 2]), GenerateError> {
+    let (w, h) = (x1 - x0, y1 - y0);
+    // The diagonal: start near one corner, goal near the opposite one.
+    let corner = rng.random_range(0..4_u32);
+    let (fx, fy): (f64, f64) = match corner {
+        0 => (0.15, 0.15),
+        1 => (0.85, 0.15),
+        2 => (0.85, 0.85),
+        _ => (0.15, 0.85),
+    };
+    // Spread starts: a square grid 40 m apart from the start corner towards the interior.
+    let grid = StartGrid {
+        columns: (req.uavs as f64).sqrt().ceil() as usize,
+        towards: [(0.5 - fx).signum(), (0.5 - fy).signum()],
+        uavs: req.uavs,
+        shared: req.shared_start,
+    };
+    let at = |f: [f64; 2]| [x0 + f[0] * w, y0 + f[1] * h];
+    let (start, goal) = match dem_terrain {
+        None => (at([fx, fy]), at([1.0 - fx, 1.0 - fy])),
+        Some(t) => (
+            gentlest_near(t, [fx, fy], |p| grid.starts(p), at),
+            gentlest_near(t, [1.0 - fx, 1.0 - fy], |p| vec![p], at),
+        ),
+    };
+    let z = spec.goal.position[2];
+    spec.goal.position = [goal[0], goal[1], z];
+    let template = spec.uavs.first().copied().unwrap_or_default();
+    let starts = grid.starts(start);
+    if starts
+        .iter()
+        .any(|p| p[0] < x0 || p[0] > x1 || p[1] < y0 || p[1] > y1)
+    {
+        return Err(GenerateError::StartsDoNotFit(req.uavs));
+    }
+    spec.uavs = starts
+        .iter()
+        .map(|p| UavSpec {
+            start: [p[0], p[1], z],
+            ..template
+        })
+        .collect();
+    Ok((start, goal))
+}
+
+/// `req.threats` threats, clear of the starts and the goal, disjoint from each other, of
+/// radius 3-7 % of the map's shorter side; too crowded a map is an error.
+fn draw_threats(
+    req: &GenerateRequest,
+    rng: &mut Rng,
+    (x0, y0, x1, y1): Extent,
+    starts: &[[f64; 2]],
+    goal: [f64; 2],
+) -> Result<Vec<Threat>, GenerateError> {
+    let (w, h) = (x1 - x0, y1 - y0);
+    let short = w.min(h);
+    let mut threats: Vec<Threat> = Vec::with_capacity(req.threats);
+    let mut attempts = 0;
+    while threats.len() < req.threats && attempts < THREAT_DRAWS_PER_THREAT * req.threats.max(1) {
+        attempts += 1;
+        let r = uniform(rng, 0.03 * short, 0.07 * short);
+        let (x, y) = (uniform(rng, x0 + r, x1 - r), uniform(rng, y0 + r, y1 - r));
+        let clear_of = |p: &[f64; 2]| (x - p[0]).hypot(y - p[1]) >= r + CLEAR_M;
+        if !starts.iter().all(clear_of) || !clear_of(&goal) {
+            continue;
+        }
+        if threats.iter().any(|t| (x - t.x).hypot(y - t.y) < r + t.r) {
+            continue;
+        }
+        threats.push(Threat { x, y, z: 300.0, r });
+    }
+    if threats.len() < req.threats {
+        return Err(GenerateError::Crowded {
+            threats: req.threats,
+            placed: threats.len(),
+            width: w,
+            height: h,
+        });
+    }
+    Ok(threats)
 }
 
 #[cfg(test)]

@@ -206,6 +206,20 @@ pub fn parse_csv(
         };
         entry.push((k, fix));
     }
+    let paths = ordered_paths(rows, name)?;
+    let delays = delays
+        .into_iter()
+        .filter_map(|(u, d)| Some((u, d?.0)))
+        .collect();
+    to_plan(paths, pace.map(|(p, _)| p), &delays, name, world, frame)
+}
+
+/// Each UAV's fixes in waypoint order; UAVs must run 0, 1, 2, ... and so must each UAV's
+/// waypoints.
+fn ordered_paths(
+    rows: BTreeMap<usize, Vec<(usize, Fix)>>,
+    name: &str,
+) -> Result<Vec<Vec<Fix>>, ImportError> {
     let mut paths = Vec::with_capacity(rows.len());
     for (expect, (uav, mut pts)) in rows.into_iter().enumerate() {
         if uav != expect {
@@ -225,11 +239,7 @@ pub fn parse_csv(
         }
         paths.push(pts.into_iter().map(|(_, f)| f).collect::<Vec<_>>());
     }
-    let delays = delays
-        .into_iter()
-        .filter_map(|(u, d)| Some((u, d?.0)))
-        .collect();
-    to_plan(paths, pace.map(|(p, _)| p), &delays, name, world, frame)
+    Ok(paths)
 }
 
 /// Parses a mission GeoJSON: the `path` features (LineStrings of [lon, lat, alt AMSL] with

@@ -168,56 +168,9 @@ pub fn parse_plan(
     world: &World,
     provenance: Provenance,
 ) -> Result<Plan, PlanFileError> {
-    let parse_error = |message: String| PlanFileError::Parse {
-        path: origin.to_string(),
-        message,
-    };
-    // serde reads a top-level array as the struct's fields in order, and would say
-    // "invalid length 0, expected struct PlanFile with 4 elements".
-    if text.trim_start().starts_with('[') {
-        return Err(parse_error(
-            "expected a JSON object (`{\"uavs\": [...], ...}`, as `plan` writes), found an array"
-                .into(),
-        ));
-    }
-    let de = &mut serde_json::Deserializer::from_str(text);
-    let file: PlanFile = serde_path_to_error::deserialize(&mut *de).map_err(|e| {
-        let at = e.path().to_string();
-        let inner = e.into_inner();
-        parse_error(if at == "." || at.is_empty() {
-            inner.to_string()
-        } else {
-            format!("{at}: {inner}")
-        })
-    })?;
-    de.end()
-        .map_err(|e| parse_error(format!("text after the plan object: {e}")))?;
+    let file = parse_syntax(text, origin)?;
     if provenance == Provenance::MustMatch {
-        let mismatch = |what, recorded: &str, current: String| PlanFileError::Provenance {
-            path: origin.to_string(),
-            what,
-            recorded: recorded.to_string(),
-            current,
-        };
-        if let Some(s) = file.scenario.as_deref().filter(|s| *s != world.spec().name) {
-            return Err(mismatch(
-                "scenario",
-                &format!("scenario `{s}`"),
-                format!("scenario `{}`", world.spec().name),
-            ));
-        }
-        let current = world.terrain().fingerprint();
-        if let Some(t) = file
-            .terrain_fingerprint
-            .as_deref()
-            .filter(|t| *t != current)
-        {
-            return Err(mismatch(
-                "terrain",
-                &format!("terrain {t}"),
-                format!("terrain {current} ({})", world.spec().terrain.source),
-            ));
-        }
+        check_provenance(&file, origin, world)?;
     }
     let invalid = |field: String, message: String| PlanFileError::Invalid {
         path: origin.to_string(),
@@ -261,70 +214,148 @@ pub fn parse_plan(
         ..Plan::default()
     };
     for (i, u) in file.uavs.iter().enumerate() {
-        if u.waypoints.len() < 2 {
-            return Err(invalid(
-                format!("uavs[{i}].waypoints"),
-                format!(
-                    "expected at least 2 waypoints (start and goal), got {}",
-                    u.waypoints.len()
-                ),
-            ));
-        }
-        let waypoints: Vec<DVec3> = u.waypoints.iter().map(|w| DVec3::from_array(*w)).collect();
-        check_waypoints(world, i, &waypoints).map_err(|e| {
-            invalid(
-                match e.waypoint {
-                    Some(k) => format!("uavs[{i}].waypoints[{k}]"),
-                    None => format!("uavs[{i}].waypoints"),
-                },
-                e.message,
-            )
-        })?;
-        let ends = [
-            (0, world.start(i), "start"),
-            (u.waypoints.len() - 1, world.goal_at(DEPARTURE), "goal"),
-        ];
-        for (k, want, what) in ends {
-            let got = DVec3::from_array(u.waypoints[k]);
-            if got.distance(want) > 1e-6 {
-                return Err(invalid(
-                    format!("uavs[{i}].waypoints[{k}]"),
-                    format!(
-                        "expected the scenario's {what} [{}, {}, {}], got {:?}",
-                        want.x, want.y, want.z, u.waypoints[k]
-                    ),
-                ));
-            }
-        }
+        let (waypoints, delay) = read_uav(i, u, origin, world, provenance)?;
         plan.uavs.push(UavPath { waypoints });
-        let timing = &world.spec().timing;
-        if !(0.0..=MAX_DELAY_LIMIT).contains(&u.delay) {
-            return Err(invalid(
-                format!("uavs[{i}].delay"),
-                format!(
-                    "expected a share of the arrival time in [0, {MAX_DELAY_LIMIT}] (0: it leaves at once), got {}",
-                    u.delay
-                ),
-            ));
-        }
-        if provenance == Provenance::MustMatch && !timing.allows_delay(u.delay) {
-            return Err(PlanFileError::Provenance {
-                path: origin.to_string(),
-                what: "delay",
-                recorded: format!("uavs[{i}].delay {}", u.delay),
-                current: format!(
-                    "scenario `{}`'s timing.max_delay {}",
-                    world.spec().name,
-                    timing.max_delay
-                ),
-            });
-        }
-        plan.delays.push(u.delay);
+        plan.delays.push(delay);
     }
     if swarmplan_core::plan::no_delays(&plan.delays) {
         plan.delays.clear();
     }
     Ok(plan)
+}
+
+/// The JSON of a plan file, read as [`PlanFile`] (an object; nothing after it).
+fn parse_syntax(text: &str, origin: &str) -> Result<PlanFile, PlanFileError> {
+    let parse_error = |message: String| PlanFileError::Parse {
+        path: origin.to_string(),
+        message,
+    };
+    // serde reads a top-level array as the struct's fields in order, and would say
+    // "invalid length 0, expected struct PlanFile with 4 elements".
+    if text.trim_start().starts_with('[') {
+        return Err(parse_error(
+            "expected a JSON object (`{\"uavs\": [...], ...}`, as `plan` writes), found an array"
+                .into(),
+        ));
+    }
+    let de = &mut serde_json::Deserializer::from_str(text);
+    let file: PlanFile = serde_path_to_error::deserialize(&mut *de).map_err(|e| {
+        let at = e.path().to_string();
+        let inner = e.into_inner();
+        parse_error(if at == "." || at.is_empty() {
+            inner.to_string()
+        } else {
+            format!("{at}: {inner}")
+        })
+    })?;
+    de.end()
+        .map_err(|e| parse_error(format!("text after the plan object: {e}")))?;
+    Ok(file)
+}
+
+/// A plan recorded for another scenario or terrain is refused.
+fn check_provenance(file: &PlanFile, origin: &str, world: &World) -> Result<(), PlanFileError> {
+    let mismatch = |what, recorded: &str, current: String| PlanFileError::Provenance {
+        path: origin.to_string(),
+        what,
+        recorded: recorded.to_string(),
+        current,
+    };
+    if let Some(s) = file.scenario.as_deref().filter(|s| *s != world.spec().name) {
+        return Err(mismatch(
+            "scenario",
+            &format!("scenario `{s}`"),
+            format!("scenario `{}`", world.spec().name),
+        ));
+    }
+    let current = world.terrain().fingerprint();
+    if let Some(t) = file
+        .terrain_fingerprint
+        .as_deref()
+        .filter(|t| *t != current)
+    {
+        return Err(mismatch(
+            "terrain",
+            &format!("terrain {t}"),
+            format!("terrain {current} ({})", world.spec().terrain.source),
+        ));
+    }
+    Ok(())
+}
+
+/// UAV `i`'s waypoints and departure delay, checked against the world: at least two, each
+/// admissible, the first at its start and the last at the goal, a delay the scenario
+/// allows.
+fn read_uav(
+    i: usize,
+    u: &UavEntry,
+    origin: &str,
+    world: &World,
+    provenance: Provenance,
+) -> Result<(Vec<DVec3>, f64), PlanFileError> {
+    let invalid = |field: String, message: String| PlanFileError::Invalid {
+        path: origin.to_string(),
+        field,
+        message,
+    };
+    if u.waypoints.len() < 2 {
+        return Err(invalid(
+            format!("uavs[{i}].waypoints"),
+            format!(
+                "expected at least 2 waypoints (start and goal), got {}",
+                u.waypoints.len()
+            ),
+        ));
+    }
+    let waypoints: Vec<DVec3> = u.waypoints.iter().map(|w| DVec3::from_array(*w)).collect();
+    check_waypoints(world, i, &waypoints).map_err(|e| {
+        invalid(
+            match e.waypoint {
+                Some(k) => format!("uavs[{i}].waypoints[{k}]"),
+                None => format!("uavs[{i}].waypoints"),
+            },
+            e.message,
+        )
+    })?;
+    let ends = [
+        (0, world.start(i), "start"),
+        (u.waypoints.len() - 1, world.goal_at(DEPARTURE), "goal"),
+    ];
+    for (k, want, what) in ends {
+        let got = DVec3::from_array(u.waypoints[k]);
+        if got.distance(want) > 1e-6 {
+            return Err(invalid(
+                format!("uavs[{i}].waypoints[{k}]"),
+                format!(
+                    "expected the scenario's {what} [{}, {}, {}], got {:?}",
+                    want.x, want.y, want.z, u.waypoints[k]
+                ),
+            ));
+        }
+    }
+    let timing = &world.spec().timing;
+    if !(0.0..=MAX_DELAY_LIMIT).contains(&u.delay) {
+        return Err(invalid(
+            format!("uavs[{i}].delay"),
+            format!(
+                "expected a share of the arrival time in [0, {MAX_DELAY_LIMIT}] (0: it leaves at once), got {}",
+                u.delay
+            ),
+        ));
+    }
+    if provenance == Provenance::MustMatch && !timing.allows_delay(u.delay) {
+        return Err(PlanFileError::Provenance {
+            path: origin.to_string(),
+            what: "delay",
+            recorded: format!("uavs[{i}].delay {}", u.delay),
+            current: format!(
+                "scenario `{}`'s timing.max_delay {}",
+                world.spec().name,
+                timing.max_delay
+            ),
+        });
+    }
+    Ok((waypoints, u.delay))
 }
 
 /// Why a UAV's waypoints cannot be evaluated: which waypoint (none when it is the path as a

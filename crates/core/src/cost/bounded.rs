@@ -14,11 +14,12 @@
 
 use super::spso::Collisions;
 use super::{
-    comm, fleet_terms, flown_terms, fly, penalty, waypoint_terms, Scratch, TermId, UavReport,
-    WaypointTerms,
+    comm, fleet_terms, flown_terms, fly, penalty, waypoint_terms, FleetBuffers, Scratch, TermId,
+    UavReport, WaypointTerms,
 };
 use crate::feasibility::ViolationSink;
 use crate::plan::Plan;
+use crate::timing::TimedPlan;
 use crate::world::World;
 
 /// What a bounded assessment ([`super::assess_bounded`]) may give up above: a plan whose
@@ -160,30 +161,14 @@ pub(super) fn bounded_terms(
                 &mut scratch.prox,
                 &mut scratch.prox_out,
             );
-            // After the sweep, the least the plan can cost: all but the obstacle term.
-            let reports = &scratch.reports;
-            let too_costly = |fleet: &ViolationSink, comm_out: &[comm::CommOutcome]| {
-                if cutoff.cost == f64::INFINITY {
-                    return false;
-                }
-                let mut terms = 0.0;
-                for (r, c) in reports.iter().zip(comm_out) {
-                    let mut raw = r.raw;
-                    raw[TermId::Communication] = c.cost;
-                    terms += raw.weighted(objective).sum();
-                }
-                let measure = fleet.measure + own.measure + fleet.soft + own.soft;
-                let count = fleet.count + own.count;
-                terms + penalty(world, reordered_lower_bound(measure, count)) > cutoff.cost
-            };
-            given_up = !fleet_terms(
+            given_up = !bounded_fleet_terms(
                 world,
                 plan,
                 motion,
                 fleet,
+                (&scratch.reports, &own),
                 sink,
-                cutoff.violation,
-                too_costly,
+                cutoff,
             );
         }
     }
@@ -197,6 +182,45 @@ pub(super) fn bounded_terms(
     }
     scratch.deferred = own.deferred.take().unwrap_or_default();
     !given_up
+}
+
+/// The fleet's terms of a bounded assessment ([`fleet_terms`]), given up (false) once the
+/// violation passes `cutoff.violation` or, after the communication sweep, the least the
+/// plan can cost (all but the obstacle term, with the violations found so far in `own`
+/// and the fleet's) passes `cutoff.cost`.
+fn bounded_fleet_terms(
+    world: &World,
+    plan: &Plan,
+    motion: &TimedPlan,
+    fleet: FleetBuffers<'_>,
+    (reports, own): (&[UavReport], &ViolationSink),
+    sink: &mut ViolationSink,
+    cutoff: Cutoff,
+) -> bool {
+    let objective = &world.spec().objective;
+    let too_costly = |fleet: &ViolationSink, comm_out: &[comm::CommOutcome]| {
+        if cutoff.cost == f64::INFINITY {
+            return false;
+        }
+        let mut terms = 0.0;
+        for (r, c) in reports.iter().zip(comm_out) {
+            let mut raw = r.raw;
+            raw[TermId::Communication] = c.cost;
+            terms += raw.weighted(objective).sum();
+        }
+        let measure = fleet.measure + own.measure + fleet.soft + own.soft;
+        let count = fleet.count + own.count;
+        terms + penalty(world, reordered_lower_bound(measure, count)) > cutoff.cost
+    };
+    fleet_terms(
+        world,
+        plan,
+        motion,
+        fleet,
+        sink,
+        cutoff.violation,
+        too_costly,
+    )
 }
 
 /// What a full assessment's sum of a plan's violations is at least, given `partial`, the

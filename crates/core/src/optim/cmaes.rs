@@ -175,6 +175,32 @@ enum Shape {
 }
 
 impl State {
+    /// Draws the generation's lambda points from N(mean, sigma^2 C) in the unit cube
+    /// (projected into it), and the same points in the problem's box, row after row.
+    fn sample_generation(&self, bounds: &[Bound], rng: &mut Rng) -> (Vec<DVector<f64>>, Vec<f64>) {
+        let n = bounds.len();
+        let mut ys: Vec<DVector<f64>> = Vec::with_capacity(self.lambda);
+        // B D, the map from N(0, I) to a step (D alone when C is diagonal).
+        let bd = match &self.shape {
+            Shape::Full { b, .. } => Some(scale_columns(b, &self.d)),
+            Shape::Diagonal { .. } => None,
+        };
+        let mut points = vec![0.0; self.lambda * n];
+        for k in 0..self.lambda {
+            let z = DVector::from_iterator(n, (0..n).map(|_| StandardNormal.sample(rng)));
+            let mut y = match &bd {
+                Some(bd) => &self.mean + (bd * z) * self.sigma,
+                None => &self.mean + z.component_mul(&self.d) * self.sigma,
+            };
+            for (j, b) in bounds.iter().enumerate() {
+                y[j] = project_unit(b, y[j]);
+                points[k * n + j] = b.lo + y[j] * (b.hi - b.lo);
+            }
+            ys.push(y);
+        }
+        (ys, points)
+    }
+
     fn new(n: usize, lambda: usize, mean: DVector<f64>, sigma: f64, diagonal: bool) -> Self {
         let nf = n as f64;
         let mu = lambda / 2;
@@ -401,26 +427,7 @@ impl Optimizer for Cmaes {
         if n == 0 {
             return;
         }
-        let bounds = ev.bounds();
-        let mut ys: Vec<DVector<f64>> = Vec::with_capacity(s.lambda);
-        // B D, the map from N(0, I) to a step (D alone when C is diagonal).
-        let bd = match &s.shape {
-            Shape::Full { b, .. } => Some(scale_columns(b, &s.d)),
-            Shape::Diagonal { .. } => None,
-        };
-        let mut points = vec![0.0; s.lambda * n];
-        for k in 0..s.lambda {
-            let z = DVector::from_iterator(n, (0..n).map(|_| StandardNormal.sample(rng)));
-            let mut y = match &bd {
-                Some(bd) => &s.mean + (bd * z) * s.sigma,
-                None => &s.mean + z.component_mul(&s.d) * s.sigma,
-            };
-            for (j, b) in bounds.iter().enumerate() {
-                y[j] = project_unit(b, y[j]);
-                points[k * n + j] = b.lo + y[j] * (b.hi - b.lo);
-            }
-            ys.push(y);
-        }
+        let (mut ys, points) = s.sample_generation(ev.bounds(), rng);
         // The generation is sampled from a fixed state, so it is evaluated in parallel.
         let mut evals = Vec::with_capacity(s.lambda);
         ev.evaluate_rows(&points, s.lambda, &mut evals);

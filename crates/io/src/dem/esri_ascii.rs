@@ -40,6 +40,25 @@ impl Header {
     }
 }
 
+/// The bad-header error of `path` at `line`.
+fn bad_header(path: &Path, line: usize, detail: String) -> DemError {
+    DemError::BadHeader {
+        path: path.into(),
+        line,
+        detail,
+    }
+}
+
+/// The grid a header describes: size, cell, lower-left corner of the outer edge, no-data.
+struct Grid {
+    columns: usize,
+    rows: usize,
+    cell: (f64, f64),
+    xll: f64,
+    yll: f64,
+    nodata: Option<f64>,
+}
+
 pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<RawRaster, DemError> {
     let text = std::str::from_utf8(bytes).map_err(|e| DemError::Corrupt {
         path: path.into(),
@@ -47,13 +66,47 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<RawRaster, DemError> {
         detail: format!("not text (invalid UTF-8 at byte {})", e.valid_up_to()),
     })?;
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let bad_header = |line: usize, detail: String| DemError::BadHeader {
-        path: path.into(),
-        line,
-        detail,
-    };
-
     let mut lines = text.lines().enumerate().map(|(k, l)| (k + 1, l)).peekable();
+    let header = read_header(path, &mut lines)?;
+    let data_line = lines.peek().map_or(text.lines().count() + 1, |&(no, _)| no);
+    let Grid {
+        columns,
+        rows,
+        cell,
+        xll,
+        yll,
+        nodata,
+    } = grid_of(path, &header, data_line)?;
+    let values = read_values(path, lines, (columns, rows), data_line, bytes.len())?;
+    let top = yll + rows as f64 * cell.1;
+    Ok(RawRaster {
+        columns,
+        rows,
+        values,
+        nodata,
+        sample_type: SampleType::Text,
+        georef: Some(GeoReference {
+            upper_left_corner: (xll, top),
+            lower_left_corner: (xll, yll),
+            south_west_node: (xll + 0.5 * cell.0, yll + 0.5 * cell.1),
+            cell,
+            crs: Crs::Unknown { model_type: None },
+            crs_inferred: false,
+            citation: None,
+            tie_point: None,
+            pixel_is_point: false,
+            metres_per_unit: 1.0,
+        }),
+    })
+}
+
+/// The header: lines whose first token is a keyword (blank lines are skipped), up to the
+/// first data line, which is left in `lines`.
+fn read_header<'a>(
+    path: &Path,
+    lines: &mut std::iter::Peekable<impl Iterator<Item = (usize, &'a str)>>,
+) -> Result<Header, DemError> {
+    let bad_header = |line: usize, detail: String| bad_header(path, line, detail);
     let mut header = Header::default();
     // Header: lines whose first token is a keyword (blank lines are skipped).
     while let Some(&(no, line)) = lines.peek() {
@@ -97,7 +150,12 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<RawRaster, DemError> {
         header.values[slot] = Some((value, no));
         lines.next();
     }
-    let data_line = lines.peek().map_or(text.lines().count() + 1, |&(no, _)| no);
+    Ok(header)
+}
+
+/// The grid the header describes; a missing field is said at `data_line`.
+fn grid_of(path: &Path, header: &Header, data_line: usize) -> Result<Grid, DemError> {
+    let bad_header = |line: usize, detail: String| bad_header(path, line, detail);
     let missing = |field: &'static str| DemError::MissingField {
         path: path.into(),
         field,
@@ -163,13 +221,36 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<RawRaster, DemError> {
     let xll = corner("xllcorner", "xllcenter", 0.5 * cell.0)?;
     let yll = corner("yllcorner", "yllcenter", 0.5 * cell.1)?;
     let nodata = Some(header.get("nodata_value").map_or(-9999.0, |(v, _)| v));
+    Ok(Grid {
+        columns,
+        rows,
+        cell,
+        xll,
+        yll,
+        nodata,
+    })
+}
 
+/// The `columns x rows` values after the header, row by row; a file of `file_bytes` bytes
+/// reserves no more than it could hold (a corrupt header must not allocate GBs).
+fn read_values<'a>(
+    path: &Path,
+    lines: impl Iterator<Item = (usize, &'a str)>,
+    (columns, rows): (usize, usize),
+    data_line: usize,
+    file_bytes: usize,
+) -> Result<Vec<f64>, DemError> {
     let expected = columns
         .checked_mul(rows)
         .filter(|n| *n <= 2_000_000_000)
-        .ok_or_else(|| bad_header(data_line, format!("{columns} x {rows} cells is too many")))?;
-    // Reserve at most what the file could hold (a corrupt header must not allocate GBs).
-    let mut values = Vec::with_capacity(expected.min(bytes.len() / 2 + 1));
+        .ok_or_else(|| {
+            bad_header(
+                path,
+                data_line,
+                format!("{columns} x {rows} cells is too many"),
+            )
+        })?;
+    let mut values = Vec::with_capacity(expected.min(file_bytes / 2 + 1));
     let mut found = 0usize;
     for (no, line) in lines {
         for token in line.split_ascii_whitespace() {
@@ -194,24 +275,5 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<RawRaster, DemError> {
             found,
         });
     }
-    let top = yll + rows as f64 * cell.1;
-    Ok(RawRaster {
-        columns,
-        rows,
-        values,
-        nodata,
-        sample_type: SampleType::Text,
-        georef: Some(GeoReference {
-            upper_left_corner: (xll, top),
-            lower_left_corner: (xll, yll),
-            south_west_node: (xll + 0.5 * cell.0, yll + 0.5 * cell.1),
-            cell,
-            crs: Crs::Unknown { model_type: None },
-            crs_inferred: false,
-            citation: None,
-            tie_point: None,
-            pixel_is_point: false,
-            metres_per_unit: 1.0,
-        }),
-    })
+    Ok(values)
 }

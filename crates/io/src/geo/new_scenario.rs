@@ -19,7 +19,7 @@ use swarmplan_core::world::terrain::Sampling;
 use super::ellipsoid::Geodetic;
 use super::frame::LocalFrame;
 use super::GeoError;
-use crate::dem::{read_terrain, DemFrame, DemOptions};
+use crate::dem::{read_terrain, DemFrame, DemOptions, LoadedDem};
 use crate::scenario::{parse_spec, to_toml};
 
 use crate::scenario::load_builtin;
@@ -67,13 +67,35 @@ fn paper_distance(spec: &ScenarioSpec) -> f64 {
     (g[0] - s[0]).hypot(g[1] - s[1])
 }
 
-/// Builds the scenario (see the module docs). Errors name the flag at fault.
-pub fn new_scenario(req: &NewScenarioRequest<'_>) -> Result<NewScenario, GeoError> {
-    let flag = |what: &str, expected: String, got: String| GeoError::Syntax {
+/// A bad value of `what` (a flag): what was expected and what was given.
+fn flag(what: &str, expected: String, got: String) -> GeoError {
+    GeoError::Syntax {
         what: what.into(),
         expected,
         got,
-    };
+    }
+}
+
+/// Builds the scenario (see the module docs). Errors name the flag at fault.
+pub fn new_scenario(req: &NewScenarioRequest<'_>) -> Result<NewScenario, GeoError> {
+    check_request(req)?;
+    let (dem, frame) = read_dem(req)?;
+    let (start, goal) = locate_ends(req, &dem, &frame)?;
+    let spec = fit_template(req, start, goal, dem.terrain.extent())?;
+    // The result must read back as a valid scenario.
+    let spec = parse_spec(&to_toml(&spec), "scenario new")?;
+    let origin = frame.origin()?;
+    Ok(NewScenario {
+        spec,
+        origin: Geodetic::new(origin.lat_deg, origin.lon_deg, 0.0),
+        frame,
+        start_local: start,
+        goal_local: goal,
+    })
+}
+
+/// The request's numbers: at least one UAV, a positive height, a non-negative margin.
+fn check_request(req: &NewScenarioRequest<'_>) -> Result<(), GeoError> {
     if req.uavs == 0 {
         return Err(flag("--uavs", "at least 1 UAV".into(), "0".into()));
     }
@@ -93,6 +115,11 @@ pub fn new_scenario(req: &NewScenarioRequest<'_>) -> Result<NewScenario, GeoErro
             ));
         }
     }
+    Ok(())
+}
+
+/// The DEM and the local frame its CRS gives.
+fn read_dem(req: &NewScenarioRequest<'_>) -> Result<(LoadedDem, LocalFrame), GeoError> {
     let opts = DemOptions {
         frame: DemFrame::Georeferenced,
         sampling: Sampling::Bilinear,
@@ -113,6 +140,15 @@ pub fn new_scenario(req: &NewScenarioRequest<'_>) -> Result<NewScenario, GeoErro
             e.to_string(),
         )
     })?;
+    Ok((dem, frame))
+}
+
+/// The start and goal in the local frame, each inside the DEM and at least 1 m apart.
+fn locate_ends(
+    req: &NewScenarioRequest<'_>,
+    dem: &LoadedDem,
+    frame: &LocalFrame,
+) -> Result<(DVec2, DVec2), GeoError> {
     let (x0, y0, x1, y1) = dem.terrain.extent();
     // The DEM's geodetic bounds, for messages.
     let corners: Vec<Geodetic> = [(x0, y0), (x1, y0), (x0, y1), (x1, y1)]
@@ -168,7 +204,19 @@ pub fn new_scenario(req: &NewScenarioRequest<'_>) -> Result<NewScenario, GeoErro
             ),
         ));
     }
+    Ok((start, goal))
+}
 
+/// The paper's Case 1 fitted to the request: its fleet at the start, UGV0 at the goal, the
+/// map box the DEM (or the margin around both), batteries and range scaled with the
+/// distance, no threats, interference or extra nodes.
+fn fit_template(
+    req: &NewScenarioRequest<'_>,
+    start: DVec2,
+    goal: DVec2,
+    (x0, y0, x1, y1): (f64, f64, f64, f64),
+) -> Result<ScenarioSpec, GeoError> {
+    let distance = start.distance(goal);
     let mut spec = load_builtin("paper-case1")?.spec;
     let ratio = distance / paper_distance(&spec);
     spec.name = req.name.clone();
@@ -221,16 +269,7 @@ pub fn new_scenario(req: &NewScenarioRequest<'_>) -> Result<NewScenario, GeoErro
     spec.communication.range *= ratio;
     spec.communication.interference.clear();
     spec.communication.ground_nodes.clear();
-    // The result must read back as a valid scenario.
-    let spec = parse_spec(&to_toml(&spec), "scenario new")?;
-    let origin = frame.origin()?;
-    Ok(NewScenario {
-        spec,
-        origin: Geodetic::new(origin.lat_deg, origin.lon_deg, 0.0),
-        frame,
-        start_local: start,
-        goal_local: goal,
-    })
+    Ok(spec)
 }
 
 /// The scenario as TOML with `[geo] origin` appended (unless the spec already writes a
