@@ -9,7 +9,9 @@ use swarmplan_core::problem::BlockProblem;
 
 use proptest::prelude::*;
 use swarmplan_core::cost::assess;
-use swarmplan_core::encoding::{angle::Angle, build, EncodingKind, Frame, InitKind, PathEncoding};
+use swarmplan_core::encoding::{
+    angle::Angle, build, EncodingKind, InitKind, PathEncoding, PathFrame,
+};
 use swarmplan_core::planning::PlanningProblem;
 use swarmplan_core::problem::Problem;
 use swarmplan_core::world::World;
@@ -80,7 +82,7 @@ proptest! {
 
     #[test]
     fn periodic_angle_encoding_wraps(u in raw_vector(), turns in -3i32..3) {
-        let enc = Angle::new(Frame::of(world()), true);
+        let enc = Angle::new(PathFrame::of(world()), true);
         let x: Vec<f64> = u.iter().map(|v| v * 1.5).collect();
         let shifted: Vec<f64> = x.iter().map(|v| v + f64::from(turns) * std::f64::consts::TAU).collect();
         let projected: Vec<f64> = shifted.iter().zip(enc.bounds()).map(|(v, b)| b.project(*v)).collect();

@@ -98,9 +98,9 @@ fn parse_attempts(s: &str) -> Result<usize, String> {
     }
 }
 
-/// Progress on stderr: a bar on a terminal, otherwise a log line at the start, at the
+/// A run's progress on stderr: a bar on a terminal, otherwise a log line at the start, at the
 /// first feasible plan and every 5 s.
-struct Progress {
+struct ProgressBar {
     bar: Option<indicatif::ProgressBar>,
     started: std::time::Instant,
     last_line: std::time::Duration,
@@ -109,7 +109,7 @@ struct Progress {
     total: Option<u64>,
 }
 
-impl Progress {
+impl ProgressBar {
     fn new(budget: &Budget, uavs: usize, quiet: bool) -> Self {
         use std::io::IsTerminal as _;
         let total = budget.evaluations;
@@ -342,7 +342,8 @@ fn announcement(args: &PlanArgs, world: &World, req: &RunRequest) -> String {
 fn run_with_progress(args: &PlanArgs, world: &World, prepared: &Prepared) -> Attempts {
     let req = &prepared.req;
     // A mutex, not a cell: the run goes to the worker pool.
-    let progress = std::sync::Mutex::new(Progress::new(&req.budget, world.uav_count(), args.json));
+    let progress =
+        std::sync::Mutex::new(ProgressBar::new(&req.budget, world.uav_count(), args.json));
     let progress = || {
         progress
             .lock()
@@ -358,7 +359,7 @@ fn run_with_progress(args: &PlanArgs, world: &World, prepared: &Prepared) -> Att
             &mut |attempt, r| {
                 let mut p = progress();
                 if attempt != current {
-                    *p = Progress::new(&req.budget, world.uav_count(), args.json);
+                    *p = ProgressBar::new(&req.budget, world.uav_count(), args.json);
                     current = attempt;
                 }
                 p.update(r);

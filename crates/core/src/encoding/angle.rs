@@ -5,21 +5,21 @@
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
-use super::{Frame, PathEncoding};
+use super::{PathEncoding, PathFrame};
 use crate::plan::Plan;
 use crate::problem::Bound;
 
 /// The angle encoding of a frame: one phase per coordinate of each free waypoint.
 #[derive(Debug, Clone)]
 pub struct Angle {
-    frame: Frame,
+    frame: PathFrame,
     bounds: Vec<Bound>,
 }
 
 impl Angle {
     /// Phases in [-pi/2, pi/2], or with `periodic` on the whole circle [-pi, pi), wrapping.
     #[must_use]
-    pub fn new(frame: Frame, periodic: bool) -> Self {
+    pub fn new(frame: PathFrame, periodic: bool) -> Self {
         let b = if periodic {
             Bound::periodic(-PI, PI)
         } else {

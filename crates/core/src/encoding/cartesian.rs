@@ -1,21 +1,21 @@
 //! Cartesian encoding: each free waypoint's (x, y, z above ground) directly, bounded by the
 //! map box and the altitude band. The plain PSO / QPSO / GWO / ABC baselines use it.
 
-use super::{Frame, PathEncoding};
+use super::{PathEncoding, PathFrame};
 use crate::plan::Plan;
 use crate::problem::Bound;
 
 /// The Cartesian encoding of a frame: free waypoints' coordinates as they are.
 #[derive(Debug, Clone)]
 pub struct Cartesian {
-    frame: Frame,
+    frame: PathFrame,
     bounds: Vec<Bound>,
 }
 
 impl Cartesian {
     /// Each coordinate bounded by the frame's map box and altitude band.
     #[must_use]
-    pub fn new(frame: Frame) -> Self {
+    pub fn new(frame: PathFrame) -> Self {
         let n = frame.n;
         let mut bounds = Vec::with_capacity(frame.dimension());
         for _ in &frame.starts {

@@ -23,7 +23,7 @@ use rand::Rng as _;
 use serde::{Deserialize, Serialize};
 
 use super::corridor::resample;
-use super::Frame;
+use super::PathFrame;
 use crate::plan::Plan;
 use crate::rng::Rng;
 
@@ -104,13 +104,13 @@ fn uniform(lo: f64, hi: f64, rng: &mut Rng) -> f64 {
 }
 
 /// A plan drawn by the `line` sampler: every UAV's free waypoints near its start-goal line.
-pub fn sample_line_plan(frame: &Frame, rng: &mut Rng, plan: &mut Plan) {
+pub fn sample_line_plan(frame: &PathFrame, rng: &mut Rng, plan: &mut Plan) {
     sample_bowed_plan(frame, &[], rng, plan);
 }
 
 /// A plan drawn by the `fan` sampler ([`InitKind::Fan`]): a `line` plan or a fanned one,
 /// with probability 1/2 each.
-pub fn sample_fan_plan(frame: &Frame, rng: &mut Rng, plan: &mut Plan) {
+pub fn sample_fan_plan(frame: &PathFrame, rng: &mut Rng, plan: &mut Plan) {
     if rng.random::<bool>() {
         sample_line_plan(frame, rng, plan);
     } else {
@@ -119,7 +119,7 @@ pub fn sample_fan_plan(frame: &Frame, rng: &mut Rng, plan: &mut Plan) {
 }
 
 /// The fanned half of [`sample_fan_plan`].
-fn sample_fanned_plan(frame: &Frame, rng: &mut Rng, plan: &mut Plan) {
+fn sample_fanned_plan(frame: &PathFrame, rng: &mut Rng, plan: &mut Plan) {
     frame.prepare(plan);
     let m = plan.uavs.len();
     let mut order: Vec<usize> = (0..m).collect();
@@ -145,7 +145,7 @@ fn sample_fanned_plan(frame: &Frame, rng: &mut Rng, plan: &mut Plan) {
 /// A plan drawn by the `corridor` sampler: every UAV's free waypoints near its corridor
 /// (`corridors[i]`, from [`super::corridor::corridors`]; an empty one means the line).
 pub fn sample_corridor_plan(
-    frame: &Frame,
+    frame: &PathFrame,
     corridors: &[Vec<DVec2>],
     rng: &mut Rng,
     plan: &mut Plan,
@@ -155,7 +155,7 @@ pub fn sample_corridor_plan(
 
 /// Free waypoints along each UAV's guide (its corridor, resampled with its corners, when it has one of at
 /// least two points, else the start-goal line), bowed sideways, at one random height.
-fn sample_bowed_plan(frame: &Frame, corridors: &[Vec<DVec2>], rng: &mut Rng, plan: &mut Plan) {
+fn sample_bowed_plan(frame: &PathFrame, corridors: &[Vec<DVec2>], rng: &mut Rng, plan: &mut Plan) {
     frame.prepare(plan);
     for (i, (path, s)) in plan.uavs.iter_mut().zip(&frame.starts).enumerate() {
         let axes = start_goal_axes(*s, frame.goal);
@@ -191,7 +191,7 @@ fn start_goal_axes(start: DVec3, goal: DVec3) -> (f64, DVec2, DVec2) {
 /// `guided`), displaced sideways by the bow `a1 sin(pi t) + a2 sin(2 pi t)`, at height `z`,
 /// clamped into the box.
 fn place_bowed(
-    frame: &Frame,
+    frame: &PathFrame,
     path: &mut crate::plan::Path,
     start: DVec3,
     (length, dir, side): (f64, DVec2, DVec2),
@@ -217,8 +217,8 @@ mod tests {
     use super::*;
     use crate::rng::rng_from_seed;
 
-    fn frame() -> Frame {
-        Frame {
+    fn frame() -> PathFrame {
+        PathFrame {
             starts: vec![DVec3::new(100.0, 100.0, 150.0); 2],
             goal: DVec3::new(900.0, 700.0, 150.0),
             x: [0.0, 1000.0],
@@ -251,8 +251,8 @@ mod tests {
     }
 
     /// Five UAVs from one start (`frame`'s, 1000 m from the goal, 8 free waypoints).
-    fn five_from_one_start() -> Frame {
-        Frame {
+    fn five_from_one_start() -> PathFrame {
+        PathFrame {
             starts: vec![DVec3::new(100.0, 100.0, 150.0); 5],
             ..frame()
         }
@@ -260,7 +260,7 @@ mod tests {
 
     /// Whether the UAVs of `plan` (drawn on `f`) leave in the order they arrive and at least
     /// 15 m apart sideways at the first free waypoint.
-    fn leaves_fanned(f: &Frame, plan: &Plan) -> bool {
+    fn leaves_fanned(f: &PathFrame, plan: &Plan) -> bool {
         let (length, dir, side) = start_goal_axes(f.starts[0], f.goal);
         let lateral = |w: DVec3, t: f64| {
             let on = f.starts[0].truncate() + dir * (t * length);

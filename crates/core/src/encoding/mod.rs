@@ -92,9 +92,12 @@ impl FromStr for EncodingKind {
     }
 }
 
-/// What every encoding needs to know about the world.
+/// What every encoding needs to know about the world to draw paths in it: the starts, the
+/// goal, the box and the number of free waypoints. (The geographic frames are others:
+/// `LocalFrame` and `EnuFrame` in swarmplan-io, a terrain's `TerrainFrame`, a DEM's
+/// `DemFrame`.)
 #[derive(Debug, Clone, PartialEq)]
-pub struct Frame {
+pub struct PathFrame {
     /// Start of each UAV, [x, y, z_agl].
     pub starts: Vec<DVec3>,
     /// Goal, [x, y, z_agl].
@@ -109,7 +112,7 @@ pub struct Frame {
     pub n: usize,
 }
 
-impl Frame {
+impl PathFrame {
     /// The frame of `world`: its UAVs' starts, the goal at departure, the map box and the
     /// number of free waypoints.
     #[must_use]
@@ -158,7 +161,7 @@ pub fn build_along(
     world: &World,
     guides: &[Vec<glam::DVec2>],
 ) -> Box<dyn PathEncoding> {
-    let frame = Frame::of(world);
+    let frame = PathFrame::of(world);
     match kind {
         EncodingKind::Spherical => Box::new(spherical::Spherical::along_guides(
             frame,
@@ -179,14 +182,14 @@ mod tests {
     use super::*;
     use crate::rng::rng_from_seed;
 
-    fn frame() -> Frame {
+    fn frame() -> PathFrame {
         frame_with(6)
     }
 
     /// Two UAVs from near (100, 80) to (800, 700) on a 1000 x 900 m map, `n` free waypoints
     /// (also the encoding wrappers' tests).
-    pub(super) fn frame_with(n: usize) -> Frame {
-        Frame {
+    pub(super) fn frame_with(n: usize) -> PathFrame {
+        PathFrame {
             starts: vec![
                 DVec3::new(100.0, 80.0, 150.0),
                 DVec3::new(120.0, 60.0, 150.0),
@@ -304,7 +307,7 @@ mod tests {
         let guides = vec![corridor.clone(), corridor];
         let mut rng = rng_from_seed(10);
         let mut plan = Plan::default();
-        let frame1 = Frame {
+        let frame1 = PathFrame {
             starts: vec![f.starts[0]; 2],
             ..f.clone()
         };

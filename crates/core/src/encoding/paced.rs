@@ -77,7 +77,7 @@ mod tests {
     use crate::encoding::cartesian::Cartesian;
     use crate::encoding::tests::frame_with;
 
-    fn frame() -> crate::encoding::Frame {
+    fn frame() -> crate::encoding::PathFrame {
         frame_with(3)
     }
 

@@ -14,7 +14,7 @@ use std::f64::consts::FRAC_PI_4;
 
 use glam::DVec2;
 
-use super::{Frame, PathEncoding};
+use super::{PathEncoding, PathFrame};
 use crate::plan::Plan;
 use crate::problem::Bound;
 
@@ -31,7 +31,7 @@ pub enum AngleConvention {
 /// previous one.
 #[derive(Debug, Clone)]
 pub struct Spherical {
-    frame: Frame,
+    frame: PathFrame,
     convention: AngleConvention,
     bounds: Vec<Bound>,
 }
@@ -39,7 +39,7 @@ pub struct Spherical {
 impl Spherical {
     /// Heading sectors centred on each UAV's start-goal bearing, under `convention`.
     #[must_use]
-    pub fn new(frame: Frame, convention: AngleConvention) -> Self {
+    pub fn new(frame: PathFrame, convention: AngleConvention) -> Self {
         Self::along_guides(frame, convention, &[])
     }
 
@@ -50,7 +50,11 @@ impl Spherical {
     /// start-goal sector. So a corridor that leaves the start-goal bearing by more than
     /// 45 degrees (round a threat) can be expressed and searched around.
     #[must_use]
-    pub fn along_guides(frame: Frame, convention: AngleConvention, guides: &[Vec<DVec2>]) -> Self {
+    pub fn along_guides(
+        frame: PathFrame,
+        convention: AngleConvention,
+        guides: &[Vec<DVec2>],
+    ) -> Self {
         let n = frame.n;
         let mut bounds = Vec::with_capacity(frame.dimension());
         for (i, s) in frame.starts.iter().enumerate() {

@@ -9,7 +9,7 @@ use std::cell::RefCell;
 
 use crate::cost::{assess, assess_bounded, assess_into, Assessment, Cutoff, Scratch};
 use crate::encoding::init::{sample_corridor_plan, sample_fan_plan, sample_line_plan};
-use crate::encoding::{self, EncodingKind, Frame, InitKind, PathEncoding};
+use crate::encoding::{self, EncodingKind, InitKind, PathEncoding, PathFrame};
 use crate::feasibility::ViolationSink;
 use crate::plan::Plan;
 use crate::problem::{fill_uniform, BlockProblem, Bound, Evaluation, Problem};
@@ -47,7 +47,7 @@ pub struct PlanningProblem<'w> {
     encoding: Box<dyn PathEncoding>,
     kind: EncodingKind,
     init: InitKind,
-    frame: Frame,
+    frame: PathFrame,
     /// Threat-free corridors per UAV, computed once for the `corridor` initialisation.
     corridors: crate::encoding::corridor::Corridors,
 }
@@ -109,7 +109,7 @@ impl<'w> PlanningProblem<'w> {
             encoding: path_encoding,
             kind,
             init,
-            frame: Frame::of(world),
+            frame: PathFrame::of(world),
             corridors,
         }
     }
