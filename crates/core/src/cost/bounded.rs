@@ -80,6 +80,7 @@ pub(super) fn bounded_terms(
     let n = plan.uavs.len();
     let flies_arcs = world.flies_arcs();
     let objective = &world.spec().objective;
+    let weights = objective.weights();
     // Under the `spso` preset SPSO's terms are the whole cost and there are no fleet terms;
     // a plan with a collision costs +inf, beyond any finite cutoff, so its terms may stop
     // there.
@@ -91,7 +92,7 @@ pub(super) fn bounded_terms(
     let least_cost = |reports: &[UavReport], own: &ViolationSink| {
         let mut terms = 0.0;
         for r in reports {
-            terms += r.raw.weighted(objective).sum();
+            terms += r.raw.weighted(&weights).sum();
         }
         terms
             + penalty(
@@ -197,7 +198,7 @@ fn bounded_fleet_terms(
     sink: &mut ViolationSink,
     cutoff: Cutoff,
 ) -> bool {
-    let objective = &world.spec().objective;
+    let weights = world.spec().objective.weights();
     let too_costly = |fleet: &ViolationSink, comm_out: &[comm::CommOutcome]| {
         if cutoff.cost == f64::INFINITY {
             return false;
@@ -206,7 +207,7 @@ fn bounded_fleet_terms(
         for (r, c) in reports.iter().zip(comm_out) {
             let mut raw = r.raw;
             raw[TermId::Communication] = c.cost;
-            terms += raw.weighted(objective).sum();
+            terms += raw.weighted(&weights).sum();
         }
         let measure = fleet.measure + own.measure + fleet.soft + own.soft;
         let count = fleet.count + own.count;

@@ -301,11 +301,12 @@ pub fn assess_bounded(
         }
     }
     let mut terms_cost = 0.0;
+    let weights = world.spec().objective.weights();
     for (u, r) in scratch.reports.iter_mut().enumerate() {
         r.raw[TermId::Communication] = scratch.comm_out[u].cost;
         r.raw[TermId::Obstacle] = scratch.prox_out[u];
         r.outage_s = scratch.comm_out[u].outage_s;
-        r.weighted = r.raw.weighted(&world.spec().objective);
+        r.weighted = r.raw.weighted(&weights);
         r.cost = r.weighted.sum();
         terms_cost += r.cost;
     }

@@ -1,16 +1,15 @@
 //! The cost terms as one list.
 //!
-//! Names, units, weights, per-UAV values, breakdowns, run records and every renderer come
-//! from [`TermId::ALL`], so adding a term is a variant here (name, unit, weight field of the
-//! scenario's `[objective]`) and the file that computes it; nothing else lists terms.
+//! Names, units, weights (the scenario's `[objective]` keys them by [`TermId::name`]),
+//! per-UAV values, breakdowns, run records and every renderer come from [`TermId::ALL`],
+//! so adding a term is a variant here (name, unit, default weight) and the file that
+//! computes it; nothing else lists terms.
 
 use std::ops::{Index, IndexMut};
 
 use serde::de::{MapAccess, Visitor};
 use serde::ser::SerializeMap;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
-
-use crate::world::spec::{ObjectivePreset, ObjectiveSpec};
 
 /// One term of the objective.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -90,22 +89,20 @@ impl TermId {
         )
     }
 
-    /// The term's weight in `objective`.
+    /// The term's weight by default (SPSO's b1..b4, the paper's w2..w6 as calibrated in
+    /// docs/model.md).
     #[must_use]
-    pub fn weight(self, o: &ObjectiveSpec) -> f64 {
-        if self.cooperative() && o.preset == ObjectivePreset::Spso {
-            return 0.0;
-        }
+    pub const fn default_weight(self) -> f64 {
         match self {
-            Self::Length => o.length,
-            Self::Threat => o.threat,
-            Self::Altitude => o.altitude,
-            Self::Smoothness => o.smoothness,
-            Self::Safety => o.safety,
-            Self::Energy => o.energy,
-            Self::Communication => o.communication,
-            Self::Turning => o.turning,
-            Self::Obstacle => o.obstacle,
+            Self::Length => 5.0,
+            Self::Threat => 1.0,
+            Self::Altitude => 10.0,
+            Self::Smoothness => 1.0,
+            Self::Safety => 100.0,
+            Self::Energy => 0.05,
+            Self::Communication => 1.0,
+            Self::Turning => 1.0,
+            Self::Obstacle => 100.0,
         }
     }
 
@@ -114,11 +111,34 @@ impl TermId {
     }
 }
 
+/// Every term's name, in [`TermId::ALL`]'s order.
+pub const NAMES: [&str; TERM_COUNT] = {
+    let mut names = [""; TERM_COUNT];
+    let mut k = 0;
+    while k < TERM_COUNT {
+        names[k] = TermId::ALL[k].name();
+        k += 1;
+    }
+    names
+};
+
+/// The term named `name`, if any.
+#[must_use]
+pub fn term_named(name: &str) -> Option<TermId> {
+    TermId::ALL.into_iter().find(|t| t.name() == name)
+}
+
 /// One value per term (raw or weighted). Serialised as a map `{name: value}`.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Terms([f64; TERM_COUNT]);
 
 impl Terms {
+    /// The values of the terms in [`TermId::ALL`]'s order.
+    #[must_use]
+    pub const fn new(values: [f64; TERM_COUNT]) -> Self {
+        Self(values)
+    }
+
     /// `(term, value)` in report order.
     pub fn iter(&self) -> impl Iterator<Item = (TermId, f64)> + '_ {
         TermId::ALL.iter().map(|&t| (t, self[t]))
@@ -130,12 +150,13 @@ impl Terms {
         self.0.iter().sum()
     }
 
-    /// Each term times its weight in `objective`.
+    /// Each term times its weight in `weights` (an objective's effective weights:
+    /// `ObjectiveSpec::weights`).
     #[must_use]
-    pub fn weighted(&self, objective: &ObjectiveSpec) -> Self {
+    pub fn weighted(&self, weights: &Self) -> Self {
         let mut w = *self;
         for t in TermId::ALL {
-            w[t] *= t.weight(objective);
+            w[t] *= weights[t];
         }
         w
     }
@@ -182,25 +203,8 @@ impl<'de> Deserialize<'de> for Terms {
             fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Terms, A::Error> {
                 let mut t = Terms::default();
                 while let Some(k) = map.next_key::<String>()? {
-                    let id = TermId::ALL
-                        .into_iter()
-                        .find(|t| t.name() == k)
-                        .ok_or_else(|| {
-                            serde::de::Error::unknown_field(
-                                &k,
-                                &[
-                                    "length",
-                                    "threat",
-                                    "altitude",
-                                    "smoothness",
-                                    "safety",
-                                    "energy",
-                                    "communication",
-                                    "turning",
-                                    "obstacle",
-                                ],
-                            )
-                        })?;
+                    let id = term_named(&k)
+                        .ok_or_else(|| serde::de::Error::unknown_field(&k, &NAMES))?;
                     t[id] = map.next_value()?;
                 }
                 Ok(t)
@@ -229,15 +233,22 @@ mod tests {
 
     #[test]
     fn the_spso_preset_drops_the_cooperative_terms() {
+        use crate::world::spec::{ObjectivePreset, ObjectiveSpec};
         let mut o = ObjectiveSpec::default();
-        let mut raw = Terms::default();
-        for t in TermId::ALL {
-            raw[t] = 1.0;
-        }
-        let paper = raw.weighted(&o).sum();
+        let raw = Terms::new([1.0; TERM_COUNT]);
+        let paper = raw.weighted(&o.weights()).sum();
         o.preset = ObjectivePreset::Spso;
-        let spso = raw.weighted(&o).sum();
-        assert_eq!(spso, o.length + o.threat + o.altitude + o.smoothness);
+        let spso = raw.weighted(&o.weights()).sum();
+        let own = [
+            TermId::Length,
+            TermId::Threat,
+            TermId::Altitude,
+            TermId::Smoothness,
+        ];
+        assert_eq!(spso, own.iter().map(|&t| o.weight(t)).sum::<f64>());
+        assert_eq!(spso, 5.0 + 1.0 + 10.0 + 1.0);
         assert!(paper > spso);
+        assert_eq!(NAMES[0], "length");
+        assert_eq!(term_named("obstacle"), Some(TermId::Obstacle));
     }
 }

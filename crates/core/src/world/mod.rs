@@ -8,6 +8,7 @@ pub mod channel;
 pub mod enclosure;
 pub mod energy;
 pub mod horizon;
+pub mod objective;
 pub mod procedural;
 pub mod spec;
 pub mod terrain;

@@ -8,6 +8,8 @@ use serde::{Deserialize, Deserializer, Serialize};
 use super::energy::RotaryWing;
 use super::threat::Threat;
 
+pub use super::objective::{ObjectivePreset, ObjectiveSpec};
+
 /// A fixed-length array of numbers that refuses extra values: serde's own arrays read the
 /// first N of a longer TOML array and drop the rest without a word (`x = [0, 300, 500]`
 /// would load as [0, 300]).
@@ -321,66 +323,6 @@ impl Default for EnergySpec {
             alpha: 1.0,
             beta: 10.0,
             model: RotaryWing::default(),
-        }
-    }
-}
-
-/// Which objective is minimised.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "kebab-case")]
-pub enum ObjectivePreset {
-    /// SPSO terms per UAV plus the paper's cooperative terms, hard violations penalised.
-    #[default]
-    Paper,
-    /// SPSO's MyCost exactly (collisions cost +inf); single-UAV cross-checks.
-    Spso,
-}
-
-/// Weights of Eq. 2 (the paper's w1..w6) on top of SPSO's per-UAV terms.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct ObjectiveSpec {
-    /// Which objective is minimised (`paper`).
-    pub preset: ObjectivePreset,
-    /// b1: SPSO path length weight (5).
-    pub length: f64,
-    /// b2: SPSO threat band weight (1).
-    pub threat: f64,
-    /// b3: SPSO altitude weight (10).
-    pub altitude: f64,
-    /// b4: SPSO smoothness weight (1).
-    pub smoothness: f64,
-    /// w2: J_safety, per speed / payload violation indicator (Eq. 4) (100).
-    pub safety: f64,
-    /// w3: J_energy, Eq. 5 (0.05).
-    pub energy: f64,
-    /// w4: J_communication (1).
-    pub communication: f64,
-    /// w5: J_turning, Eq. 7, per rad^2 (1).
-    pub turning: f64,
-    /// w6: J_obstacle, Eq. 8 at equal times (100).
-    pub obstacle: f64,
-    /// epsilon of Eq. 8, m^2 (1).
-    pub obstacle_epsilon: f64,
-    /// Penalty per unit of hard-constraint violation (1000); 0 drops the penalty.
-    pub violation_penalty: f64,
-}
-
-impl Default for ObjectiveSpec {
-    fn default() -> Self {
-        Self {
-            preset: ObjectivePreset::Paper,
-            length: 5.0,
-            threat: 1.0,
-            altitude: 10.0,
-            smoothness: 1.0,
-            safety: 100.0,
-            energy: 0.05,
-            communication: 1.0,
-            turning: 1.0,
-            obstacle: 100.0,
-            obstacle_epsilon: 1.0,
-            violation_penalty: 1000.0,
         }
     }
 }

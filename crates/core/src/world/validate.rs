@@ -421,20 +421,10 @@ impl ScenarioSpec {
     /// `[objective]`: non-negative weights; the `spso` preset for one UAV only.
     fn validate_objective(&self) -> Result<(), SpecError> {
         let o = &self.objective;
-        for (name, v) in [
-            ("length", o.length),
-            ("threat", o.threat),
-            ("altitude", o.altitude),
-            ("smoothness", o.smoothness),
-            ("safety", o.safety),
-            ("energy", o.energy),
-            ("communication", o.communication),
-            ("turning", o.turning),
-            ("obstacle", o.obstacle),
-            ("violation_penalty", o.violation_penalty),
-        ] {
-            non_negative(&format!("objective.{name}"), v)?;
+        for (t, v) in o.weights.iter() {
+            non_negative(&format!("objective.{}", t.name()), v)?;
         }
+        non_negative("objective.violation_penalty", o.violation_penalty)?;
         positive("objective.obstacle_epsilon", o.obstacle_epsilon)?;
         if o.preset == ObjectivePreset::Spso && self.uavs.len() != 1 {
             return Err(err(
