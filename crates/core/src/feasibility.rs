@@ -210,9 +210,14 @@ pub struct Violation {
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub position: Option<[f64; 3]>,
     /// When (seconds after departure), when a time applies.
-    #[serde(skip_serializing_if = "Option::is_none", default)]
+    #[serde(
+        skip_serializing_if = "Option::is_none",
+        default,
+        with = "crate::json_f64::option"
+    )]
     pub time: Option<f64>,
     /// How far past the limit, in the unit of the kind.
+    #[serde(with = "crate::json_f64")]
     pub amount: f64,
     /// A sentence for humans.
     pub detail: String,

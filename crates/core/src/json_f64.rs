@@ -111,6 +111,34 @@ pub mod map {
     }
 }
 
+/// The same for an `Option<f64>`, `None` as `null`: `#[serde(with = "json_f64::option")]`.
+pub mod option {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    use super::Item;
+
+    /// Writes `None` as `null` and a value as [`super::serialize`] does.
+    ///
+    /// # Errors
+    /// Whatever the serializer returns.
+    pub fn serialize<S: Serializer>(value: &Option<f64>, serializer: S) -> Result<S::Ok, S::Error> {
+        match value {
+            None => serializer.serialize_none(),
+            Some(v) => serializer.serialize_some(&Item(*v)),
+        }
+    }
+
+    /// Reads `null` as `None`, else a number or `"inf"`, `"-inf"`, `"nan"`.
+    ///
+    /// # Errors
+    /// A value that is none of these.
+    pub fn deserialize<'de, D: Deserializer<'de>>(
+        deserializer: D,
+    ) -> Result<Option<f64>, D::Error> {
+        Ok(Option::<Item>::deserialize(deserializer)?.map(|i| i.0))
+    }
+}
+
 struct F64Visitor;
 
 impl Visitor<'_> for F64Visitor {

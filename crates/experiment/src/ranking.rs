@@ -27,11 +27,13 @@ pub struct InstanceScores {
     /// The instance's scenario.
     pub scenario: String,
     /// Each method's feasibility ratio, percent.
+    #[serde(with = "crate::stats::json_f64::vec")]
     pub fr_percent: Vec<f64>,
     /// Each method's median cost per UAV over all its runs (+inf when undefined).
     #[serde(with = "crate::stats::json_f64::vec")]
     pub median_cost: Vec<f64>,
     /// 1 = best on this instance; ties share their mean rank.
+    #[serde(with = "crate::stats::json_f64::vec")]
     pub ranks: Vec<f64>,
 }
 
@@ -47,6 +49,7 @@ pub struct SuiteRanking {
     /// Scenarios of this parameter set that lack a run of some method.
     pub left_out: Vec<String>,
     /// Mean FR over the instances, per method.
+    #[serde(with = "crate::stats::json_f64::vec")]
     pub mean_fr_percent: Vec<f64>,
     /// Instances on which the method ranks first (alone or tied).
     pub wins: Vec<usize>,

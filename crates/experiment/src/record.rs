@@ -11,8 +11,10 @@ use swarmplan_core::run::RunResult;
 
 use crate::matrix::RunKey;
 
-/// Everything a statistic or a figure may need about one run. Non-finite costs are stored
-/// as `null` (JSON has no infinity) and read back as +inf.
+/// Everything a statistic or a figure may need about one run. Non-finite numbers are
+/// written as everywhere else ([`swarmplan_core::json_f64`]: `"inf"`, `"-inf"`, `"nan"`);
+/// records written before issue 44 (costs as `null`, other non-finite values capped at
+/// `f64::MAX`) still read.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RunRecord {
     /// The scenario, as the experiment names it.
@@ -37,14 +39,16 @@ pub struct RunRecord {
     /// The parameters of the run's parameter set.
     pub params: OptimizerParams,
     /// Total cost of the best plan (penalty included).
-    #[serde(with = "finite_or_null")]
+    #[serde(with = "cost_f64")]
     pub cost_total: f64,
     /// cost_total / number of UAVs, as the paper's tables report it.
-    #[serde(with = "finite_or_null")]
+    #[serde(with = "cost_f64")]
     pub cost_per_uav: f64,
     /// Each UAV's weighted terms summed (no penalty).
+    #[serde(with = "swarmplan_core::json_f64::vec")]
     pub uav_costs: Vec<f64>,
     /// Weighted terms summed over UAVs, plus `penalty`.
+    #[serde(with = "swarmplan_core::json_f64::map")]
     pub terms: BTreeMap<String, f64>,
     /// The feasibility profile the run was assessed under (`strict` in records written
     /// before profiles existed).
@@ -66,6 +70,7 @@ pub struct RunRecord {
     pub seconds: f64,
     /// Best cost per UAV after initialisation and after each iteration (past
     /// `TRACE_CAP` iterations, every s-th: `swarmplan_core::optim::thinned`).
+    #[serde(with = "swarmplan_core::json_f64::vec")]
     pub convergence: Vec<f64>,
     /// Evaluations spent at each point of `convergence` (empty in records written before
     /// it existed), so methods with different evaluations per iteration compare over
@@ -107,11 +112,9 @@ impl RunRecord {
         let a = &result.assessment;
         let n = a.per_uav.len().max(1) as f64;
         let t = a.term_totals();
-        let mut terms: BTreeMap<String, f64> = t
-            .iter()
-            .map(|(k, v)| (k.name().to_string(), finite(v)))
-            .collect();
-        terms.insert("penalty".into(), finite(a.penalty));
+        let mut terms: BTreeMap<String, f64> =
+            t.iter().map(|(k, v)| (k.name().to_string(), v)).collect();
+        terms.insert("penalty".into(), a.penalty);
         let (mut violations, mut soft_violations) = (BTreeMap::new(), BTreeMap::new());
         for v in a.violations.iter().flatten() {
             let map = if v.hard {
@@ -134,7 +137,7 @@ impl RunRecord {
             params,
             cost_total: a.total,
             cost_per_uav: a.total / n,
-            uav_costs: a.per_uav.iter().map(|u| finite(u.cost)).collect(),
+            uav_costs: a.per_uav.iter().map(|u| u.cost).collect(),
             terms,
             profile: a.profile,
             feasible: a.feasible(),
@@ -147,7 +150,7 @@ impl RunRecord {
                 .outcome
                 .trace
                 .iter()
-                .map(|r| finite(r.best_cost / n))
+                .map(|r| r.best_cost / n)
                 .collect(),
             convergence_evaluations: result.outcome.trace.iter().map(|r| r.evaluations).collect(),
             convergence_iterations: thinned_iterations(&result.outcome.trace),
@@ -170,28 +173,21 @@ fn thinned_iterations(trace: &[swarmplan_core::optim::IterationRecord]) -> Vec<u
     }
 }
 
-/// Caps non-finite values for fields that are diagnostic only.
-fn finite(v: f64) -> f64 {
-    if v.is_finite() {
-        v
-    } else {
-        f64::MAX
-    }
-}
-
-mod finite_or_null {
+/// A cost: written as [`swarmplan_core::json_f64`] writes it; read also as records before
+/// issue 44 wrote it (`null` for +inf).
+mod cost_f64 {
     use serde::{Deserialize, Deserializer, Serializer};
 
+    /// A value as [`swarmplan_core::json_f64`] reads it.
+    #[derive(Deserialize)]
+    struct Stored(#[serde(with = "swarmplan_core::json_f64")] f64);
+
     pub fn serialize<S: Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
-        if v.is_finite() {
-            s.serialize_f64(*v)
-        } else {
-            s.serialize_none()
-        }
+        swarmplan_core::json_f64::serialize(v, s)
     }
 
     pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-        Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::INFINITY))
+        Ok(Option::<Stored>::deserialize(d)?.map_or(f64::INFINITY, |s| s.0))
     }
 }
 
@@ -210,6 +206,25 @@ mod tests {
                 best_violation: 0.0,
             })
             .collect()
+    }
+
+    #[test]
+    fn costs_read_both_encodings_and_write_the_one_used_everywhere() {
+        #[derive(serde::Serialize, serde::Deserialize)]
+        struct Cost(#[serde(with = "cost_f64")] f64);
+        assert_eq!(
+            serde_json::to_string(&Cost(f64::INFINITY)).expect("writes"),
+            "\"inf\""
+        );
+        assert_eq!(serde_json::to_string(&Cost(12.5)).expect("writes"), "12.5");
+        for (old, want) in [
+            ("null", f64::INFINITY),
+            ("\"inf\"", f64::INFINITY),
+            ("3", 3.0),
+        ] {
+            let Cost(v) = serde_json::from_str(old).expect("reads");
+            assert_eq!(v, want, "{old}");
+        }
     }
 
     #[test]

@@ -39,6 +39,7 @@ pub struct GroupSummary {
     /// Number of feasible runs.
     pub feasible: usize,
     /// Feasibility ratio, percent.
+    #[serde(with = "crate::stats::json_f64")]
     pub fr_percent: f64,
     /// Infeasible runs whose best plan has at most [`NEAR_MISS_VIOLATIONS`] hard violations.
     #[serde(default)]
@@ -48,13 +49,16 @@ pub struct GroupSummary {
     /// Cost per UAV over feasible runs only.
     pub cost_feasible: Option<Summary>,
     /// Evaluations spent per run, mean.
+    #[serde(with = "crate::stats::json_f64")]
     pub mean_evaluations: f64,
     /// Median, over the feasible runs that record it, of the evaluations spent when the
     /// best plan first became feasible (`plan --until-feasible` would stop there).
     #[serde(default)]
+    #[serde(with = "crate::stats::json_f64::option")]
     pub median_first_feasible_evaluations: Option<f64>,
     /// Wall time per run (not in summary.json: it varies between executions).
     #[serde(skip)]
+    #[serde(with = "crate::stats::json_f64")]
     pub mean_seconds: f64,
     /// Against the reference method (absent for the reference itself).
     pub versus_reference: Option<Versus>,
@@ -68,14 +72,18 @@ pub const NEAR_MISS_VIOLATIONS: usize = 2;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Versus {
     /// Mann-Whitney U of this method's costs against the reference's.
+    #[serde(with = "crate::stats::json_f64")]
     pub rank_sum_u: f64,
     /// Two-sided p-value of the rank-sum test.
+    #[serde(with = "crate::stats::json_f64")]
     pub rank_sum_p: f64,
     /// Exact (small samples without ties) or normal approximation.
     pub rank_sum_method: RankSumMethod,
     /// Holm-adjusted over the methods of the scenario.
+    #[serde(with = "crate::stats::json_f64")]
     pub rank_sum_p_holm: f64,
     /// Fisher's exact test on (feasible, infeasible) counts.
+    #[serde(with = "crate::stats::json_f64")]
     pub fisher_p: f64,
 }
 

@@ -43,6 +43,7 @@ pub struct FriedmanTest {
     pub p_value: f64,
     /// Mean rank of each treatment over the blocks, in column order (1 = always best);
     /// they sum to k (k + 1) / 2.
+    #[serde(with = "json_f64::vec")]
     pub mean_ranks: Vec<f64>,
 }
 
