@@ -9,7 +9,8 @@ use swarmplan_core::cost::assess;
 use swarmplan_core::world::World;
 use swarmplan_io::geo::{Geodetic, LocalFrame};
 use swarmplan_io::import::{parse_csv, parse_geojson};
-use swarmplan_io::scenario::{build_world, load_spec};
+use swarmplan_io::catalog::load_spec;
+use swarmplan_io::scenario::build_world;
 
 fn world() -> &'static World {
     static WORLD: OnceLock<World> = OnceLock::new();

@@ -8,7 +8,8 @@ use libfuzzer_sys::fuzz_target;
 use swarmplan_core::cost::assess;
 use swarmplan_core::world::World;
 use swarmplan_io::plan_file::{parse_plan, Provenance};
-use swarmplan_io::scenario::{build_world, load_spec};
+use swarmplan_io::catalog::load_spec;
+use swarmplan_io::scenario::build_world;
 
 fn world() -> &'static World {
     static WORLD: OnceLock<World> = OnceLock::new();

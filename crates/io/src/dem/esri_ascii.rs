@@ -69,21 +69,15 @@ pub(super) fn read(path: &Path, bytes: &[u8]) -> Result<RawRaster, DemError> {
     let mut lines = text.lines().enumerate().map(|(k, l)| (k + 1, l)).peekable();
     let header = read_header(path, &mut lines)?;
     let data_line = lines.peek().map_or(text.lines().count() + 1, |&(no, _)| no);
-    let Grid {
-        columns,
-        rows,
-        cell,
-        xll,
-        yll,
-        nodata,
-    } = grid_of(path, &header, data_line)?;
+    let grid = grid_of(path, &header, data_line)?;
+    let (columns, rows, cell, xll, yll) = (grid.columns, grid.rows, grid.cell, grid.xll, grid.yll);
     let values = read_values(path, lines, (columns, rows), data_line, bytes.len())?;
     let top = yll + rows as f64 * cell.1;
     Ok(RawRaster {
         columns,
         rows,
         values,
-        nodata,
+        nodata: grid.nodata,
         sample_type: SampleType::Text,
         georef: Some(GeoReference {
             upper_left_corner: (xll, top),

@@ -4,14 +4,15 @@
 
 #![allow(clippy::unwrap_used)] // tests fail loudly by design
 
+mod common;
+
+use common::{build_world, load_spec};
+
 use swarmplan_core::attempts::{attempt_seed, run_attempts, Attempts};
 use swarmplan_core::method::Method;
 use swarmplan_core::optim::{Budget, OptimizerParams};
 use swarmplan_core::run::{run, RunRequest};
 use swarmplan_core::world::World;
-use swarmplan_io::scenario::build_world;
-
-use swarmplan_io::catalog::load_spec;
 
 fn world(name: &str) -> World {
     build_world(&load_spec(name).unwrap(), None).unwrap()

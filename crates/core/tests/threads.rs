@@ -4,13 +4,14 @@
 
 #![allow(clippy::unwrap_used)] // tests fail loudly by design
 
+mod common;
+
+use common::{build_world, load_spec};
+
 use swarmplan_core::method::{Method, PRESETS};
 use swarmplan_core::optim::{Budget, OptimizerParams};
 use swarmplan_core::run::{run, RunRequest, RunResult};
 use swarmplan_core::world::World;
-use swarmplan_io::scenario::build_world;
-
-use swarmplan_io::catalog::load_spec;
 
 fn run_on(threads: usize, world: &World, req: &RunRequest) -> RunResult {
     rayon::ThreadPoolBuilder::new()

@@ -4,15 +4,16 @@
 
 #![allow(clippy::unwrap_used)] // tests fail loudly by design
 
+mod common;
+
+use common::{build_world, load_spec};
+
 use swarmplan_core::method::PRESETS;
 use swarmplan_core::optim::{build, solve, Budget, OptimizerParams, Outcome};
 use swarmplan_core::planning::PlanningProblem;
 use swarmplan_core::problem::BlockProblem;
 use swarmplan_core::problem::{Bound, Evaluation, Problem};
 use swarmplan_core::rng::{rng_from_seed, Rng};
-use swarmplan_io::scenario::build_world;
-
-use swarmplan_io::catalog::load_spec;
 
 /// A problem evaluated in full every time: everything delegated but the bounded
 /// evaluations, which keep the trait's defaults.

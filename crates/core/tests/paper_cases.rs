@@ -4,11 +4,12 @@
 
 #![allow(clippy::unwrap_used)] // tests fail loudly by design
 
+mod common;
+
+use common::{build_world, load_spec};
+
 use swarmplan_core::feasibility::{check, ViolationKind};
 use swarmplan_core::plan::Plan;
-use swarmplan_io::scenario::build_world;
-
-use swarmplan_io::catalog::load_spec;
 
 #[test]
 fn the_straight_plan_hits_threats_and_loses_contact_in_both_cases() {

@@ -4,6 +4,10 @@
 
 #![allow(clippy::unwrap_used)] // tests fail loudly by design
 
+mod common;
+
+use common::{build_world, load_spec};
+
 use std::sync::OnceLock;
 use swarmplan_core::problem::BlockProblem;
 
@@ -15,9 +19,6 @@ use swarmplan_core::encoding::{
 use swarmplan_core::planning::PlanningProblem;
 use swarmplan_core::problem::Problem;
 use swarmplan_core::world::World;
-use swarmplan_io::scenario::build_world;
-
-use swarmplan_io::catalog::load_spec;
 
 fn world() -> &'static World {
     static W: OnceLock<World> = OnceLock::new();
