@@ -3,6 +3,7 @@
 use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
+use swarmplan_core::cost::cost_per_uav;
 use swarmplan_core::encoding::{EncodingKind, InitKind};
 use swarmplan_core::feasibility::FeasibilityProfile;
 use swarmplan_core::method::Method;
@@ -110,7 +111,7 @@ impl RunRecord {
         result: &RunResult,
     ) -> Self {
         let a = &result.assessment;
-        let n = a.per_uav.len().max(1) as f64;
+        let uavs = a.per_uav.len();
         let t = a.term_totals();
         let mut terms: BTreeMap<String, f64> =
             t.iter().map(|(k, v)| (k.name().to_string(), v)).collect();
@@ -136,7 +137,7 @@ impl RunRecord {
             seed: result.seed,
             params,
             cost_total: a.total,
-            cost_per_uav: a.total / n,
+            cost_per_uav: cost_per_uav(a.total, uavs),
             uav_costs: a.per_uav.iter().map(|u| u.cost).collect(),
             terms,
             profile: a.profile,
@@ -150,7 +151,7 @@ impl RunRecord {
                 .outcome
                 .trace
                 .iter()
-                .map(|r| r.best_cost / n)
+                .map(|r| cost_per_uav(r.best_cost, uavs))
                 .collect(),
             convergence_evaluations: result.outcome.trace.iter().map(|r| r.evaluations).collect(),
             convergence_iterations: thinned_iterations(&result.outcome.trace),

@@ -10,6 +10,7 @@
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
+use swarmplan_core::cost::cost_per_uav;
 use swarmplan_core::optim::IterationRecord;
 use thiserror::Error;
 
@@ -41,7 +42,7 @@ impl ConvergenceRow {
             iteration: record.iteration,
             evaluations: record.evaluations,
             best_cost: record.best_cost,
-            best_cost_per_uav: record.best_cost / uavs.max(1) as f64,
+            best_cost_per_uav: cost_per_uav(record.best_cost, uavs),
             best_violation: record.best_violation,
         }
     }

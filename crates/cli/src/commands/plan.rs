@@ -105,7 +105,7 @@ struct ProgressBar {
     started: std::time::Instant,
     last_line: std::time::Duration,
     feasible_seen: bool,
-    uavs: f64,
+    uavs: usize,
     total: Option<u64>,
 }
 
@@ -128,7 +128,7 @@ impl ProgressBar {
             started: std::time::Instant::now(),
             last_line: std::time::Duration::ZERO,
             feasible_seen: false,
-            uavs: uavs.max(1) as f64,
+            uavs,
             total,
         }
     }
@@ -142,7 +142,7 @@ impl ProgressBar {
         let msg = format!(
             "iteration {}, best {:.1} per UAV, {state}",
             r.iteration,
-            r.best_cost / self.uavs
+            swarmplan_core::cost::cost_per_uav(r.best_cost, self.uavs)
         );
         let elapsed = self.started.elapsed();
         let first_feasible = r.best_violation == 0.0 && !self.feasible_seen;

@@ -33,6 +33,14 @@ use crate::timing::TimedPlan;
 use crate::world::spec::ObjectivePreset;
 use crate::world::World;
 
+/// A fleet's cost per UAV, as the paper's tables report it: `total` over the number of
+/// UAVs (at least 1). The one place this is computed: reports, run records, convergence
+/// traces and progress lines all call it.
+#[must_use]
+pub fn cost_per_uav(total: f64, uavs: usize) -> f64 {
+    total / uavs.max(1) as f64
+}
+
 /// What a report says about one UAV.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct UavReport {
@@ -123,10 +131,10 @@ impl Assessment {
         format!("INFEASIBLE: {n} violations ({hard}){soft_note}")
     }
 
-    /// Cost per UAV, as the paper's tables report it.
+    /// Cost per UAV, as the paper's tables report it ([`cost_per_uav`]).
     #[must_use]
     pub fn per_uav_cost(&self) -> f64 {
-        self.total / self.per_uav.len().max(1) as f64
+        cost_per_uav(self.total, self.per_uav.len())
     }
 
     /// Weighted terms summed over UAVs.
