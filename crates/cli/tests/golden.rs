@@ -3,7 +3,7 @@
 //!
 //! `plan` and `evaluate` on paper-case1, paper-case2, tiny and outside-1 (default method
 //! and seed) are compared in full, seconds and output paths aside; `bench --runs 2` over
-//! every preset on both paper cases and the outside suite (168 runs, about 5 minutes on 2
+//! every preset on both paper cases and the outside suite (168 runs, about 3 minutes on 2
 //! cores, so `#[ignore]`d: run it on purpose) is compared by a digest of each record.
 //!
 //! A change that is meant to move results rewrites the files with `SWARMPLAN_BLESS=1` (the
@@ -136,7 +136,7 @@ fn plan_and_evaluate_outputs_match_the_golden_files() {
 }
 
 #[test]
-#[ignore = "168 runs, about 5 minutes on 2 cores: run on purpose around a change of structure"]
+#[ignore = "168 runs, about 3 minutes on 2 cores: run on purpose around a change of structure"]
 fn bench_records_match_the_golden_records() {
     assert!(
         outside_data_present(),
