@@ -332,10 +332,25 @@ impl ViolationSink {
     }
 
     /// Adds the recorded violations to `other`, in the order they came: the sums of `other`
-    /// are then what they would be had they been added there in the first place (no place,
-    /// time or detail is replayed, so `other` must not be collecting a list).
+    /// are then what they would be had they been added there in the first place. When this
+    /// sink keeps the list, the list is replayed, places, times and details included (for an
+    /// `other` that keeps one); otherwise the record, which carries none (so `other` must not
+    /// be keeping a list).
     pub fn replay_into(&self, other: &mut ViolationSink) {
-        other.replay(self.deferred.as_deref().unwrap_or_default());
+        match &self.list {
+            Some(list) => {
+                for v in list {
+                    let at = At {
+                        other: v.other,
+                        index: v.index,
+                        position: v.position.map(DVec3::from_array),
+                        time: v.time,
+                    };
+                    other.add(v.kind, v.uav, v.amount, at, || v.detail.clone());
+                }
+            }
+            None => other.replay(self.deferred.as_deref().unwrap_or_default()),
+        }
     }
 
     /// Adds violations recorded by a deferring sink, in their order (no place, time or

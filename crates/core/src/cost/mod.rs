@@ -10,7 +10,7 @@
 //! [`assess`] is the one entry point: the optimizer's hot path and the report use the same
 //! code, the report merely asks for the violation list and exact clearances.
 
-mod bounded;
+mod staged;
 pub mod clearance;
 pub mod comm;
 pub mod coverage;
@@ -22,7 +22,7 @@ pub mod safety;
 pub mod spso;
 pub mod term;
 
-pub use bounded::Cutoff;
+pub use staged::Cutoff;
 pub use term::{TermId, Terms, TERM_COUNT};
 
 use serde::{Deserialize, Serialize};
@@ -233,22 +233,24 @@ pub fn assess_into(
 /// violation adds at least 1 to the measure and floating-point addition is monotone in each
 /// argument, so a partial sum, or a sum over some of the violations, never exceeds the final
 /// one (a sum taken in another order may, by rounding, and is compared with a margin:
-/// `bounded::reordered_lower_bound`); likewise the total cost with the terms not yet known (none
+/// `staged::reordered_lower_bound`); likewise the total cost with the terms not yet known (none
 /// of them negative) at zero, and the penalty of the violations found so far, never exceed
 /// the final total. A plan given up would have ended above `cutoff`, so an optimizer that only needs
 /// to know whether a candidate beats one at the cutoff (by Deb's rules or by penalised cost)
 /// learns that exactly, for less.
 ///
-/// With a cutoff (no violation list wanted) the UAVs' own terms come first, into a sink
-/// that records their violations: every UAV's terms on its waypoints (threat band,
-/// altitude, turns, climb, turning radius; under the `spso` preset and a finite cost cutoff
-/// they stop at a collision, which makes the cost +inf), checked after each UAV and for
-/// cost after all; then the flown paths are built and every UAV's terms on them (arc
-/// threats, clearance, speed, battery), checked likewise; then the communication sweep
-/// (checked for violation and cost) and proximity (checked for violation), which the `spso`
-/// preset does not have; then the recorded violations are added to `sink` in the order
-/// [`assess_into`] adds them, so a plan not given up gets the same bits. With
-/// [`Cutoff::NONE`] it is [`assess_into`], operation for operation.
+/// One driver serves every assessment, full or bounded, report or hot path
+/// ([`staged`]): the terms are computed in three phases ([`term::Phase`]), the UAVs' own
+/// terms first, into a sink that records their violations: every UAV's terms on its
+/// waypoints (threat band, altitude, turns, climb, turning radius; under the `spso` preset
+/// and a finite cost cutoff they stop at a collision, which makes the cost +inf), checked
+/// against the cutoff after each UAV and for cost after all; then the flown paths are built
+/// and every UAV's terms on them (arc threats, clearance, speed, battery), checked
+/// likewise; then the fleet's: the communication sweep (checked for violation and cost) and
+/// proximity (checked for violation), which the `spso` preset does not have. Then the
+/// recorded violations (with their places and details when `sink` keeps a list) are added
+/// to `sink` after the fleet's, UAV by UAV, so a plan not given up gets the same bits
+/// whatever the cutoff.
 pub fn assess_bounded(
     world: &World,
     plan: &Plan,
@@ -258,55 +260,13 @@ pub fn assess_bounded(
     cutoff: Cutoff,
 ) -> Option<(f64, f64)> {
     let n = plan.uavs.len();
-    let spso_preset = world.spec().objective.preset == ObjectivePreset::Spso;
     scratch.own_terms.serve(world.id());
     scratch.timed.fill(world, plan);
-    let flies_arcs = world.flies_arcs();
     scratch.reports.resize_with(n, UavReport::default);
     scratch.comm_out.resize(n, comm::CommOutcome::default());
     scratch.prox_out.resize(n, 0.0);
-    if !cutoff.is_none() && !sink.is_collecting() {
-        if !bounded::bounded_terms(world, plan, scratch, sink, exact, cutoff) {
-            return None;
-        }
-    } else {
-        let motion = fly(world, &scratch.timed, &mut scratch.flown);
-        if !spso_preset {
-            let fleet = (
-                &mut scratch.comm,
-                &mut scratch.comm_out,
-                &mut scratch.prox,
-                &mut scratch.prox_out,
-            );
-            fleet_terms(world, plan, motion, fleet, sink, f64::INFINITY, |_, _| {
-                false
-            });
-        }
-        // When it flies arcs, what is flown holds the turns' tangents.
-        let flown = flies_arcs.then_some(motion);
-        let collisions = spso::Collisions::of(&world.spec().objective, f64::INFINITY);
-        let own = &mut scratch.own_terms;
-        for u in 0..n {
-            let on_waypoints = waypoint_terms(
-                world,
-                u,
-                plan,
-                (&scratch.timed, flown),
-                collisions,
-                own,
-                sink,
-            );
-            scratch.reports[u] = flown_terms(
-                world,
-                u,
-                plan,
-                (&scratch.timed, motion),
-                (flies_arcs, exact),
-                on_waypoints,
-                own,
-                sink,
-            );
-        }
+    if !staged::staged_terms(world, plan, scratch, sink, exact, cutoff) {
+        return None;
     }
     let mut terms_cost = 0.0;
     let weights = world.spec().objective.weights();
@@ -385,6 +345,7 @@ impl WaypointTerms {
         raw[TermId::Altitude] = self.spso.altitude;
         raw[TermId::Smoothness] = self.spso.smoothness;
         raw[TermId::Turning] = self.kin.turn_sq;
+        debug_assert!(raw.zero_after(term::Phase::Waypoints));
         raw
     }
 }
@@ -486,6 +447,7 @@ fn flown_terms(
     let mut raw = on_waypoints.raw();
     raw[TermId::Safety] = safety;
     raw[TermId::Energy] = energy::energy_term(world, fp, kin);
+    debug_assert!(raw.zero_after(term::Phase::Flown));
     UavReport {
         raw,
         length_m: fp.length,

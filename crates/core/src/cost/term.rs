@@ -34,6 +34,20 @@ pub enum TermId {
     Obstacle,
 }
 
+/// When a term is known in an assessment ([`super::assess_bounded`], one driver for full
+/// and bounded assessments): from a UAV's waypoints alone, from the path it flies (arcs and
+/// timing), or from the whole fleet flown together. A new term takes the phase of the
+/// least it needs, so a bounded assessment can give a plan up before computing it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Phase {
+    /// Known from one UAV's waypoints (SPSO's terms, turning).
+    Waypoints,
+    /// Known from one UAV's flown path (safety, energy).
+    Flown,
+    /// Known from the fleet flown together (communication, proximity).
+    Fleet,
+}
+
 /// How many terms there are.
 pub const TERM_COUNT: usize = 9;
 
@@ -89,6 +103,18 @@ impl TermId {
         )
     }
 
+    /// The phase of an assessment in which the term is computed.
+    #[must_use]
+    pub const fn phase(self) -> Phase {
+        match self {
+            Self::Length | Self::Threat | Self::Altitude | Self::Smoothness | Self::Turning => {
+                Phase::Waypoints
+            }
+            Self::Safety | Self::Energy => Phase::Flown,
+            Self::Communication | Self::Obstacle => Phase::Fleet,
+        }
+    }
+
     /// The term's weight by default (SPSO's b1..b4, the paper's w2..w6 as calibrated in
     /// docs/model.md).
     #[must_use]
@@ -133,6 +159,14 @@ pub fn term_named(name: &str) -> Option<TermId> {
 pub struct Terms([f64; TERM_COUNT]);
 
 impl Terms {
+    /// Whether every term after `phase` is zero (nothing computed ahead of its phase).
+    #[must_use]
+    pub fn zero_after(&self, phase: Phase) -> bool {
+        TermId::ALL
+            .iter()
+            .all(|&t| t.phase() <= phase || self[t] == 0.0)
+    }
+
     /// The values of the terms in [`TermId::ALL`]'s order.
     #[must_use]
     pub const fn new(values: [f64; TERM_COUNT]) -> Self {
@@ -217,6 +251,19 @@ impl<'de> Deserialize<'de> for Terms {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_term_set_ahead_of_its_phase_is_caught() {
+        let mut t = Terms::default();
+        t[TermId::Length] = 1.0;
+        assert!(t.zero_after(Phase::Waypoints));
+        t[TermId::Energy] = 1.0;
+        assert!(!t.zero_after(Phase::Waypoints));
+        assert!(t.zero_after(Phase::Flown));
+        t[TermId::Obstacle] = 1.0;
+        assert!(!t.zero_after(Phase::Flown));
+        assert!(t.zero_after(Phase::Fleet));
+    }
 
     #[test]
     fn names_are_distinct_and_json_round_trips() {

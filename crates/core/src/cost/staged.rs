@@ -1,13 +1,16 @@
-//! Bounded assessments: a plan assessed only to learn whether it beats a cutoff may be
-//! given up once it is known not to.
+//! The one driver of every assessment, full or bounded: the terms in three phases
+//! ([`super::term::Phase`]: each UAV's waypoints, each UAV's flown path, the fleet), and a
+//! plan assessed only to learn whether it beats a cutoff given up once it is known not to.
 //!
 //! Why: most evaluations of a search ask just that (is the moved particle better than its
 //! pbest, the candidate than its food source, the probe than what was accepted), and most
 //! answers are "no" early: a plan that breaks more constraints on its waypoints than the
 //! cutoff allows need not have its arcs built or its fleet swept. The order of the work
 //! (waypoint terms, then flown terms, then the communication sweep, then proximity) puts
-//! the cheap, decisive parts first; what is found is replayed in the order of a full
-//! assessment, so a plan not given up gets the same bits ([`super::assess_bounded`]).
+//! the cheap, decisive parts first; what is found is replayed in one fixed order (the
+//! fleet's violations, then each UAV's own), so a plan not given up gets the same bits
+//! whatever the cutoff, and a full assessment ([`Cutoff::NONE`], or a report that keeps
+//! the violation list) is the same code never giving up ([`super::assess_bounded`]).
 //! Under the `spso` preset (SPSO's MyCost, one UAV, no fleet terms) the waypoint terms are
 //! the whole cost, and a collision makes it +inf: under a finite cutoff SPSO's terms stop at
 //! the first collision and the plan is given up.
@@ -58,18 +61,15 @@ impl Cutoff {
             ..Self::NONE
         }
     }
-
-    pub(super) fn is_none(self) -> bool {
-        self.violation == f64::INFINITY && self.cost == f64::INFINITY
-    }
 }
 
-/// The bounded part of [`super::assess_bounded`]: every UAV's terms on its waypoints, then
-/// (the flown paths built only now) its terms on what it flies, then the fleet's terms,
-/// giving up (false) as soon as the plan is known to exceed `cutoff`. The own violations go
-/// to a deferring sink and are replayed into `sink` after the fleet's, UAV by UAV
-/// (waypoint terms, then flown terms), the order of a full assessment.
-pub(super) fn bounded_terms(
+/// The terms of [`super::assess_bounded`]: every UAV's terms on its waypoints, then (the
+/// flown paths built only now) its terms on what it flies, then the fleet's terms, giving up
+/// (false) as soon as the plan is known to exceed `cutoff` (never with [`Cutoff::NONE`]).
+/// The own violations go to a deferring sink (one that keeps the list too when `sink`
+/// does) and are replayed into `sink` after the fleet's, UAV by UAV (waypoint terms, then
+/// flown terms).
+pub(super) fn staged_terms(
     world: &World,
     plan: &Plan,
     scratch: &mut Scratch,
@@ -86,7 +86,12 @@ pub(super) fn bounded_terms(
     // there.
     let collisions = Collisions::of(objective, cutoff.cost);
     let spso_preset = collisions != Collisions::Penalised;
-    let mut own = ViolationSink::new(sink.profile).deferring(std::mem::take(&mut scratch.deferred));
+    let own_sink = if sink.is_collecting() {
+        ViolationSink::collecting(sink.profile)
+    } else {
+        ViolationSink::new(sink.profile)
+    };
+    let mut own = own_sink.deferring(std::mem::take(&mut scratch.deferred));
     // The least the plan can cost: its terms known so far (the rest are >= 0) and the
     // penalty of the violations found so far.
     let least_cost = |reports: &[UavReport], own: &ViolationSink| {
@@ -178,6 +183,9 @@ pub(super) fn bounded_terms(
         // share of either part the order found stands).
         if let Some(d) = &mut own.deferred {
             d.sort_by_key(|v| v.uav);
+        }
+        if let Some(list) = &mut own.list {
+            list.sort_by_key(|v| v.uav);
         }
         own.replay_into(sink);
     }
