@@ -33,7 +33,10 @@ pub fn load_spec(name_or_path: &str) -> Result<LoadedSpec, ScenarioError> {
         return made_from_name("generated", name_or_path, spec);
     }
     if let Some(spec) = crate::outside::load_named(name_or_path) {
-        return made_from_name("outside", name_or_path, spec.map_err(|e| e.to_string()));
+        let mut loaded = made_from_name("outside", name_or_path, spec.map_err(|e| e.to_string()))?;
+        // Its terrain source is relative to the instances' folder.
+        loaded.base_dir = crate::outside::instance_dir();
+        return Ok(loaded);
     }
     load_file(Path::new(name_or_path))
 }

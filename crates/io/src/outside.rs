@@ -67,7 +67,7 @@ struct Instance {
 #[derive(Debug, Error)]
 pub enum OutsideError {
     /// The instance file could not be read.
-    #[error("{}: cannot read: {source} (the outside instances are in ../shared/data/outside beside the checkout, or in $SWARMPLAN_SHARED/data/outside)", .path.display())]
+    #[error("{}: cannot read: {source} (the outside instances are read from $SWARMPLAN_SHARED/data/outside, else from shared/data/outside in the current folder, the program's folder or one of their ancestors)", .path.display())]
     Read {
         /// The instance file.
         path: PathBuf,
@@ -132,12 +132,17 @@ pub fn parse_name(name: &str) -> Option<(String, usize, bool)> {
         .then(|| (format!("outside-{k}"), n, delay))
 }
 
+/// The folder of the instances: `data/outside` in the shared folder
+/// ([`crate::reference_data::shared_dir`], found when the program runs).
+#[must_use]
+pub fn instance_dir() -> PathBuf {
+    shared_dir().join("data/outside")
+}
+
 /// The file of instance `stem` in the shared folder.
 #[must_use]
 pub fn instance_path(stem: &str) -> PathBuf {
-    shared_dir()
-        .join("data/outside")
-        .join(format!("{stem}.json"))
+    instance_dir().join(format!("{stem}.json"))
 }
 
 /// The scenario named `name` (`outside-K[-uN]`) from the shared folder, or `None` when the
@@ -154,7 +159,17 @@ pub fn load_named(name: &str) -> Option<Result<ScenarioSpec, OutsideError>> {
     )
 }
 
-/// The scenario of instance file `path` with `uavs` UAVs, named `name`.
+/// The last part of `path`, for messages and the terrain source.
+fn file_name(path: &Path) -> String {
+    path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
+}
+
+/// The scenario of instance file `path` with `uavs` UAVs, named `name`; its terrain source
+/// is the terrain file's name, relative to `path`'s folder (the base folder of the
+/// scenario, [`crate::scenario::LoadedSpec::base_dir`]).
 pub fn from_instance(path: &Path, uavs: usize, name: &str) -> Result<ScenarioSpec, OutsideError> {
     if uavs == 0 || uavs > 1000 {
         return Err(OutsideError::Uavs { name: name.into() });
@@ -179,11 +194,13 @@ pub fn from_instance(path: &Path, uavs: usize, name: &str) -> Result<ScenarioSpe
     spec.name = name.into();
     spec.description = format!(
         "outside benchmark instance {} (Shehadeh & Kudela's generator): {} threats, {} UAVs from one start",
-        path.display(),
+        file_name(path),
         inst.threats_x_y_height_r.len(),
         uavs
     );
-    spec.terrain.source = terrain.display().to_string();
+    // Relative to the instance's folder (the scenario's base folder), so that nothing
+    // written names a folder of this machine.
+    spec.terrain.source = file_name(&terrain);
     spec.terrain.frame = TerrainFrame::SpsoPixels;
     spec.terrain.sampling = Sampling::Bilinear;
     spec.map.x = [1.0, inst.map[0] as f64];

@@ -1,21 +1,43 @@
 //! Where the shared reference data is (the SPSO terrain and cost vectors, the outside
 //! benchmark instances), for tests, benchmarks and examples.
 //!
-//! The data lives outside the repository (`../shared/data` beside the checkout, or the
-//! folder `SWARMPLAN_SHARED` names) and is never committed. A test that needs it skips
+//! The data lives outside the repository (`shared/data` beside the checkout, or the
+//! folder `SWARMPLAN_SHARED` names) and is never committed. It is found when the program
+//! runs, never by a path of the machine that built it: an installed binary, a test and a
+//! run from any folder of the checkout all look the same way ([`shared_dir`]). A test that needs it skips
 //! with a message on a developer's machine without it, but must not pass by skipping where
 //! the data is expected: when `CI` or `SWARMPLAN_REQUIRE_SHARED` is set, a missing file is
 //! an error.
 
 use std::path::{Path, PathBuf};
 
-/// The shared folder: `$SWARMPLAN_SHARED`, else `../shared` beside the workspace.
+/// The shared folder: `$SWARMPLAN_SHARED` when set; else the first folder named `shared`
+/// that holds a `data` folder and sits in the current directory or one of its ancestors,
+/// then in the running program's folder or one of its ancestors (so `../shared` beside a
+/// checkout is found from anywhere in the checkout, and from its `target/release`); else
+/// `shared` in the current directory (whose absence the caller reports).
 #[must_use]
 pub fn shared_dir() -> PathBuf {
-    std::env::var_os("SWARMPLAN_SHARED").map_or_else(
-        || Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared"),
-        PathBuf::from,
-    )
+    if let Some(dir) = std::env::var_os("SWARMPLAN_SHARED") {
+        return PathBuf::from(dir);
+    }
+    let program_dir = std::env::current_exe()
+        .ok()
+        .and_then(|e| e.parent().map(Path::to_path_buf));
+    std::env::current_dir()
+        .ok()
+        .into_iter()
+        .chain(program_dir)
+        .find_map(|root| shared_among_ancestors(&root))
+        .unwrap_or_else(|| PathBuf::from("shared"))
+}
+
+/// The first `A/shared` with a `data` folder, A being `start` or one of its ancestors.
+fn shared_among_ancestors(start: &Path) -> Option<PathBuf> {
+    start
+        .ancestors()
+        .map(|a| a.join("shared"))
+        .find(|s| s.join("data").is_dir())
 }
 
 /// True when reference data must be present (CI, or `SWARMPLAN_REQUIRE_SHARED`).

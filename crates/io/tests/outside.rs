@@ -50,6 +50,11 @@ fn outside_instances_load_as_scenarios() {
     // The TOML it prints reads back to the same scenario; other fleet sizes by name.
     let again = swarmplan_io::scenario::parse_spec(&loaded.text, "again").unwrap();
     assert_eq!(&again, spec);
+    // What it prints names no folder (of this machine or of the one that built it): the
+    // terrain is the instance's file, beside the instance.
+    assert_eq!(spec.terrain.source, "outside-0.asc.gz");
+    assert!(!loaded.text.contains('/'), "{}", loaded.text);
+    assert_eq!(loaded.base_dir.join(&spec.terrain.source), paths[1]);
     assert_eq!(load_spec("outside-3-u12").unwrap().spec.uavs.len(), 12);
     assert!(load_spec("outside-3").unwrap().spec.threats.len() >= 15);
 }
