@@ -72,38 +72,58 @@ impl TimedPath {
         self.flown.get(s).map_or(s, |f| f.waypoint_segment)
     }
 
-    /// When this path passes each of the plan's `waypoints` waypoints: for a flown path
-    /// the middle of the arc through a corner (or the corner itself when it is flown
-    /// straight), for a waypoint path [`TimedPath::time_at`].
+    /// When this path passes each of the plan's waypoints, `waypoints` (absolute places,
+    /// [`TimedPath::abs`] of the waypoint path): for a flown path the middle of the arc
+    /// through a corner, or the corner itself when it is flown straight; for a waypoint
+    /// path [`TimedPath::time_at`]. A run of equal waypoints is one place passed once, and
+    /// every waypoint of the run gets that time: the departure for a run at the start, the
+    /// arrival for one at the goal (docs/model.md, "Waypoint times").
     #[must_use]
-    pub fn waypoint_times(&self, waypoints: usize) -> Vec<f64> {
-        if self.flown.is_empty() || waypoints < 2 {
-            return (0..waypoints)
+    pub fn waypoint_times(&self, waypoints: &[DVec3]) -> Vec<f64> {
+        let m = waypoints.len();
+        if self.flown.is_empty() || m < 2 {
+            return (0..m)
                 .map(|k| self.time_at(k.min(self.abs.len().saturating_sub(1))))
                 .collect();
         }
-        let mut times = vec![0.0; waypoints];
-        // It leaves its start at its departure (it hovered there until then).
-        times[0] = self.depart;
-        times[waypoints - 1] = self.arrival;
-        let mut arc_span: Vec<Option<(f64, f64)>> = vec![None; waypoints];
-        let mut first_vertex: Vec<Option<f64>> = vec![None; waypoints];
+        // Per corner k (the first waypoint of its run): the span of its arc, and when the
+        // straight piece into it ends (at the corner, or where its arc begins).
+        let mut arc_span: Vec<Option<(f64, f64)>> = vec![None; m];
+        let mut reached: Vec<Option<f64>> = vec![None; m];
         for (s, f) in self.flown.iter().enumerate() {
             let (t0, t1) = (self.time_at(s), self.time_at(s + 1));
+            let k = f.waypoint_segment + 1;
+            if k >= m {
+                continue;
+            }
             if f.arc {
-                let k = f.waypoint_segment + 1;
                 let span = arc_span[k].get_or_insert((t0, t1));
                 span.1 = t1;
             } else {
-                first_vertex[f.waypoint_segment].get_or_insert(t0);
+                reached[k] = Some(t1);
             }
         }
-        for k in 1..waypoints - 1 {
-            times[k] = match (arc_span[k], first_vertex[k]) {
-                (Some((t0, t1)), _) => 0.5 * (t0 + t1),
-                (None, Some(t)) => t,
-                (None, None) => times[k - 1],
+        let mut times = vec![0.0; m];
+        let mut first = 0;
+        while first < m {
+            let mut last = first;
+            while last + 1 < m && waypoints[last + 1] == waypoints[first] {
+                last += 1;
+            }
+            let t = if first == 0 {
+                // It leaves its start at its departure (it hovered there until then).
+                self.depart
+            } else if last == m - 1 {
+                self.arrival
+            } else {
+                match (arc_span[first], reached[first]) {
+                    (Some((t0, t1)), _) => 0.5 * (t0 + t1),
+                    (None, Some(t)) => t,
+                    (None, None) => times[first - 1],
+                }
             };
+            times[first..=last].fill(t);
+            first = last + 1;
         }
         times
     }

@@ -1161,3 +1161,161 @@ fn the_ground_coverage_map_is_dead_behind_a_ridge_and_beyond_the_range() {
     let dead = map.dead_share();
     assert!((0.2..0.8).contains(&dead), "dead share {dead}");
 }
+
+/// A UAV flying east at 15 m/s (cruise) on flat ground through `points` (x, z pairs at
+/// y = 100), the last one UGV0.
+fn east_at_cruise(points: &[[f64; 2]]) -> (World, Plan) {
+    let points: Vec<[f64; 3]> = points.iter().map(|p| [p[0], 100.0, p[1]]).collect();
+    let mut s = spec(&[points[0]]);
+    s.timing.policy = TimingPolicy::Cruise;
+    s.goal.position = *points.last().unwrap();
+    let plan = Plan {
+        uavs: vec![path(&points)],
+        ..Plan::default()
+    };
+    (World::new(s, flat()).unwrap(), plan)
+}
+
+#[test]
+fn a_peak_corner_is_climbed_as_flown_not_as_its_waypoint() {
+    // Up 30 deg for 200 m east, down 30 deg for 200 m: a corner of theta = 60 deg in the
+    // vertical plane. Its arc (R = 50 m) leaves the segments t = 50 tan 30 deg = 28.87 m
+    // before and after the peak and passes 50 (1 / cos 30 deg - 1) = 7.735 m below it; it is
+    // flown as ceil(60 / 16.2) = 4 chords of 15 deg, whose middle vertex is the arc's top.
+    // So the UAV climbs 115.470 - 7.735 = 107.735 m, not the waypoints' 115.470 m, and
+    // descends as much; it turns through no heading.
+    let peak = 200.0 * 30f64.to_radians().tan();
+    let (w, plan) = east_at_cruise(&[[100.0, 100.0], [300.0, 100.0 + peak], [500.0, 100.0]]);
+    let theta = 60f64.to_radians();
+    let (r, t) = (50.0, 50.0 * (0.5 * theta).tan());
+    let arc = swarmplan_core::flight::Fillet::at(
+        DVec3::new(100.0, 100.0, 100.0),
+        DVec3::new(300.0, 100.0, 100.0 + peak),
+        DVec3::new(500.0, 100.0, 100.0),
+        r,
+    )
+    .unwrap();
+    assert_eq!(arc.chords(), 4);
+    let climbed = peak - r * (1.0 / (0.5 * theta).cos() - 1.0);
+    assert!((climbed - 107.735).abs() < 1e-3, "{climbed}");
+    let length =
+        2.0 * (200.0 / 30f64.to_radians().cos() - t) + 4.0 * 2.0 * r * 7.5f64.to_radians().sin();
+    let a = assess(&w, &plan, true);
+    let u = &a.per_uav[0];
+    assert!(
+        (u.length_m - length).abs() < 1e-9,
+        "{} vs {length}",
+        u.length_m
+    );
+    let model = &w.spec().energy.model;
+    let payload = w.spec().uavs[0].payload_kg;
+    let weight_n = model.mass(payload) * swarmplan_core::world::energy::G;
+    assert!((weight_n - 24.903_325).abs() < 1e-9, "{weight_n}");
+    let want = model.power(15.0, payload) * length / 15.0 + weight_n * climbed;
+    assert!(
+        (u.energy_j - want).abs() < 1e-9 * want,
+        "{} vs {want}",
+        u.energy_j
+    );
+    // Eq. 5: L + alpha (up + down) + beta x 0, alpha = 1.
+    let eq5 = length + 2.0 * climbed;
+    assert!((u.raw[TermId::Energy] - eq5).abs() < 1e-9, "{:?}", u.raw);
+    // On its waypoints it would need m g 7.735 m = 192.6 J more.
+    let waypoint_joules = want + weight_n * (peak - climbed);
+    assert!((waypoint_joules - u.energy_j - 192.63).abs() < 0.01);
+}
+
+#[test]
+fn a_repeated_waypoint_is_passed_once_on_a_straight_line_and_mid_arc_at_a_corner() {
+    use swarmplan_core::timing::TimedPlan;
+    let times = |w: &World, plan: &Plan| {
+        let timed = TimedPlan::new(w, plan);
+        let flown = TimedPlan::flown(w, plan);
+        flown.paths[0].waypoint_times(&timed.paths[0].abs)
+    };
+    // Straight east: (300, 100) twice, the goal (500, 100) twice.
+    let (w, plan) = east_at_cruise(&[
+        [100.0, 100.0],
+        [300.0, 100.0],
+        [300.0, 100.0],
+        [500.0, 100.0],
+        [500.0, 100.0],
+    ]);
+    let got = times(&w, &plan);
+    let pass = 200.0 / 15.0;
+    let want = [0.0, pass, pass, 2.0 * pass, 2.0 * pass];
+    for (g, w) in got.iter().zip(want) {
+        assert!((g - w).abs() < 1e-9, "{got:?} vs {want:?}");
+    }
+    // A left turn of 90 deg at (300, 100), given twice: both copies when the UAV is half
+    // way round the arc, 200 - 50 m after the start plus half the arc's 6 chords of 15 deg.
+    let mut s = spec(&[[100.0, 100.0, 150.0]]);
+    s.timing.policy = TimingPolicy::Cruise;
+    s.goal.position = [300.0, 300.0, 150.0];
+    let plan = Plan {
+        uavs: vec![path(&[
+            [100.0, 100.0, 150.0],
+            [300.0, 100.0, 150.0],
+            [300.0, 100.0, 150.0],
+            [300.0, 300.0, 150.0],
+        ])],
+        ..Plan::default()
+    };
+    let w = World::new(s, flat()).unwrap();
+    let got = times(&w, &plan);
+    let chords = 6.0 * 2.0 * 50.0 * 7.5f64.to_radians().sin();
+    let mid = (150.0 + 0.5 * chords) / 15.0;
+    let arrival = (150.0 + chords + 150.0) / 15.0;
+    let want = [0.0, mid, mid, arrival];
+    for (g, w) in got.iter().zip(want) {
+        assert!((g - w).abs() < 1e-9, "{got:?} vs {want:?}");
+    }
+}
+
+#[test]
+fn the_shadowing_series_is_reproduced_from_its_documented_definition() {
+    // docs/model.md, "Communication": ChaCha8 (rand_chacha) seeded by `seed_from_u64` with
+    // `communication.seed`; standard normal draws by rand_distr's `StandardNormal`;
+    // X_0 = sigma z_0, X_{k+1} = rho X_k + sqrt(1 - rho^2) sigma z_{k+1}, rho = exp(-dt / tau),
+    // for k = 0..=ceil(3600 / dt); R_k = R0 10^(-X_k / 20).
+    use rand::SeedableRng;
+    use rand_distr::{Distribution, StandardNormal};
+    use swarmplan_core::world::channel::Channel;
+    for seed in [1, 7] {
+        let spec = CommSpec {
+            seed,
+            ..CommSpec::default()
+        };
+        let channel = Channel::new(&spec);
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let mut z = || -> f64 { StandardNormal.sample(&mut rng) };
+        let sigma = spec.shadowing_sigma_db;
+        let rho = (-spec.time_step / spec.shadowing_tau_s).exp();
+        let mut x = sigma * z();
+        for k in 0..=3600 {
+            assert_eq!(
+                channel.shadowing_db(k).to_bits(),
+                x.to_bits(),
+                "seed {seed}, k {k}"
+            );
+            let range = spec.range * 10f64.powf(-x / 20.0);
+            assert!((channel.base_range(k) - range).abs() <= 1e-9 * range);
+            x = rho * x + (1.0 - rho * rho).sqrt() * sigma * z();
+        }
+        // Later times reuse the last value.
+        assert_eq!(channel.shadowing_db(9999), channel.shadowing_db(3600));
+    }
+    // The first values for seed 1 as an implementation outside Rust computes them (ChaCha8
+    // and the ziggurat written out in Python from their definitions; docs/model.md).
+    let channel = Channel::new(&CommSpec::default());
+    let first = [
+        -0.939_388_234_223_683_9,
+        -3.252_657_155_106_094_3,
+        -2.375_968_470_949_139_5,
+        -4.068_780_961_414_792_5,
+        -4.250_111_236_278_161,
+    ];
+    for (k, want) in first.into_iter().enumerate() {
+        assert_eq!(channel.shadowing_db(k), want, "step {k}");
+    }
+}

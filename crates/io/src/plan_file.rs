@@ -435,7 +435,7 @@ pub fn plan_file(world: &World, plan: &Plan) -> PlanFile {
             UavEntry {
                 delay: tp.delay,
                 waypoints: p.waypoints.iter().map(|w| w.to_array()).collect(),
-                time_s: fp.waypoint_times(m),
+                time_s: fp.waypoint_times(&tp.abs),
                 speed_mps: vec![fp.speed; m],
                 altitude_abs_m: tp.abs.iter().map(|a| a.z).collect(),
                 altitude_agl_m: p.waypoints.iter().map(|w| w.z).collect(),

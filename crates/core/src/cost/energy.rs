@@ -5,6 +5,13 @@
 //! radians). Physical: E = P(v) L / v + m g (metres climbed) + turn energy x (radians
 //! turned) + P(0) x (departure delay, hovering at the start), with P the rotary-wing power
 //! of [`crate::world::energy::RotaryWing`]. Feasible iff E <= (1 - reserve) x battery.
+//!
+//! Both are of the path the UAV flies (docs/model.md, "Energy"): L, the metres flown up
+//! and down and the metres climbed are summed over the flown polyline, whose arcs cut the
+//! corners (a climb-then-dive corner is flown lower than its waypoint). The heading changes
+//! are the waypoints' ([`Kinematics::turn_abs`]): each arc is tangent to both segments of
+//! its corner and turns one way, so the flown path turns through exactly the headings its
+//! waypoints do.
 
 use super::kinematics::Kinematics;
 use crate::feasibility::{At, ViolationKind, ViolationSink};
@@ -15,16 +22,48 @@ use crate::world::World;
 /// Joules in a watt-hour.
 pub const J_PER_WH: f64 = 3600.0;
 
-/// The paper's Eq. 5 for one path.
-#[must_use]
-pub fn energy_term(world: &World, tp: &TimedPath, k: &Kinematics) -> f64 {
-    let e = &world.spec().energy;
-    tp.length + e.alpha * k.vertical_abs + e.beta * k.turn_abs
+/// How a flown path moves up and down.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Vertical {
+    /// Sum of |dz| of the absolute altitude over the path's segments, metres (Eq. 5).
+    pub travel: f64,
+    /// Sum of the climbs only (dz > 0), metres (the physical energy).
+    pub climbed: f64,
 }
 
-/// Physical energy of one path, joules.
+impl Vertical {
+    /// The vertical sums of the polyline of `tp` (a flown path: straight pieces and arc
+    /// chords; a waypoint path where the world flies no arcs).
+    #[must_use]
+    pub fn of(tp: &TimedPath) -> Self {
+        let mut v = Self::default();
+        for pair in tp.abs.windows(2) {
+            let dz = pair[1].z - pair[0].z;
+            v.travel += dz.abs();
+            v.climbed += dz.max(0.0);
+        }
+        v
+    }
+}
+
+/// The paper's Eq. 5 for one flown path `tp`, moving `vertical` up and down and turning
+/// through the headings of `k`.
 #[must_use]
-pub fn physical_energy(world: &World, uav: usize, tp: &TimedPath, k: &Kinematics) -> f64 {
+pub fn energy_term(world: &World, tp: &TimedPath, vertical: Vertical, k: &Kinematics) -> f64 {
+    let e = &world.spec().energy;
+    tp.length + e.alpha * vertical.travel + e.beta * k.turn_abs
+}
+
+/// Physical energy of one flown path `tp`, joules (moving `vertical` up and down and
+/// turning through the headings of `k`).
+#[must_use]
+pub fn physical_energy(
+    world: &World,
+    uav: usize,
+    tp: &TimedPath,
+    vertical: Vertical,
+    k: &Kinematics,
+) -> f64 {
     if tp.length == 0.0 {
         return 0.0;
     }
@@ -35,7 +74,8 @@ pub fn physical_energy(world: &World, uav: usize, tp: &TimedPath, k: &Kinematics
     } else {
         f64::INFINITY
     };
-    let moving = cruise + m.mass(payload) * G * k.climb_up + m.turn_energy_per_rad * k.turn_abs;
+    let moving =
+        cruise + m.mass(payload) * G * vertical.climbed + m.turn_energy_per_rad * k.turn_abs;
     if tp.depart > 0.0 {
         // Hovering at the start until departure.
         moving + m.power(0.0, payload) * tp.depart

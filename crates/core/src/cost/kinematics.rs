@@ -1,5 +1,6 @@
-//! Heading and climb along one path: the sums that the paper's Eq. 5 (energy) and Eq. 7
-//! (turning) need, and the hard turn and climb limits (45 deg each by default).
+//! Heading and climb along one path: the heading sums that the paper's Eq. 5 (energy) and
+//! Eq. 7 (turning) need, and the hard turn and climb limits (45 deg each by default). The
+//! vertical sums of Eq. 5 are the flown path's ([`super::energy::Vertical`]).
 //!
 //! Headings are those of the xy-projected segments; zero-length projections carry no heading
 //! and are skipped, so a waypoint repeated in place does not count as a turn. The turn at a
@@ -10,27 +11,23 @@ use crate::feasibility::{At, ViolationKind, ViolationSink};
 use crate::timing::TimedPath;
 use crate::world::World;
 
-/// Heading and altitude sums of one path.
+/// Heading sums of one path.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Kinematics {
     /// Sum of |heading change| over waypoints, radians (Eq. 5's turn sum).
     pub turn_abs: f64,
     /// Sum of squared heading changes, rad^2 (Eq. 7).
     pub turn_sq: f64,
-    /// Sum of |dz| of the absolute altitude over segments, metres (Eq. 5).
-    pub vertical_abs: f64,
-    /// Sum of the climbs only (dz > 0), metres (energy model).
-    pub climb_up: f64,
 }
 
-/// Computes the sums for UAV `uav` and reports turn and climb violations. Without `sums`
-/// (the `spso` preset weighs them 0) the turn sums are left at 0 and only the limits are
-/// checked, which saves an `atan2` per waypoint.
+/// Computes the sums for UAV `uav` and reports turn and climb violations. The sums are
+/// computed under every objective preset: the `spso` preset weighs Eq. 7 at 0, but the
+/// battery check needs the radians turned (until issue 45 it skipped them there, and the
+/// turning energy counted only the turns that broke the limit).
 pub fn kinematics(
     world: &World,
     uav: usize,
     tp: &TimedPath,
-    sums: bool,
     sink: &mut ViolationSink,
 ) -> Kinematics {
     let spec = &world.spec().uavs[uav];
@@ -47,8 +44,6 @@ pub fn kinematics(
     let cos_turn = max_turn.cos();
     for s in 0..p.len().saturating_sub(1) {
         let d = p[s + 1] - p[s];
-        k.vertical_abs += d.z.abs();
-        k.climb_up += d.z.max(0.0);
         let horizontal = (d.x * d.x + d.y * d.y).sqrt();
         // |climb| > limit, without an atan2 unless it is violated.
         if d.z.abs() > tan_climb * horizontal && d.z.abs().atan2(horizontal) > max_climb + 1e-9 {
@@ -77,16 +72,12 @@ pub fn kinematics(
             continue;
         }
         if let Some((px, py, ph)) = last_heading {
-            // The unsigned angle between consecutive headings; atan2 only when a sum needs
-            // it or the limit is broken (cos turn < cos limit, tested without it).
+            // The unsigned angle between consecutive headings; the limit is tested without
+            // it first (cos turn < cos limit).
             let cross = (px * d.y - py * d.x).abs();
             let dot = px * d.x + py * d.y;
             let broken = dot < cos_turn * ph * horizontal;
-            let turn = if sums || broken {
-                cross.atan2(dot)
-            } else {
-                0.0
-            };
+            let turn = cross.atan2(dot);
             k.turn_abs += turn;
             k.turn_sq += turn * turn;
             if broken && turn > max_turn + 1e-9 {

@@ -10,7 +10,6 @@
 //! [`assess`] is the one entry point: the optimizer's hot path and the report use the same
 //! code, the report merely asks for the violation list and exact clearances.
 
-mod staged;
 pub mod clearance;
 pub mod comm;
 pub mod coverage;
@@ -20,6 +19,7 @@ mod own_memo;
 pub mod proximity;
 pub mod safety;
 pub mod spso;
+mod staged;
 pub mod term;
 
 pub use staged::Cutoff;
@@ -392,10 +392,9 @@ fn waypoint_terms_afresh(
             ..WaypointTerms::default()
         };
     }
-    let spso_preset = collisions != spso::Collisions::Penalised;
     let terms = WaypointTerms {
         spso,
-        kin: kinematics::kinematics(world, u, tp, !spso_preset, sink),
+        kin: kinematics::kinematics(world, u, tp, sink),
     };
     if let Some(flown) = flown {
         crate::flight::check_turn_radius(
@@ -442,11 +441,12 @@ fn flown_terms(
     });
     let segments = tp.abs.len().saturating_sub(1);
     let safety = safety::safety_term(world, u, fp, segments, sink);
-    let joules = energy::physical_energy(world, u, fp, kin);
+    let vertical = energy::Vertical::of(fp);
+    let joules = energy::physical_energy(world, u, fp, vertical, kin);
     let battery_ratio = energy::check_battery(world, u, joules, sink);
     let mut raw = on_waypoints.raw();
     raw[TermId::Safety] = safety;
-    raw[TermId::Energy] = energy::energy_term(world, fp, kin);
+    raw[TermId::Energy] = energy::energy_term(world, fp, vertical, kin);
     debug_assert!(raw.zero_after(term::Phase::Flown));
     UavReport {
         raw,

@@ -151,8 +151,10 @@ pub struct MissionPoint {
     pub alt_agl_m: f64,
     /// Terrain altitude AMSL below the point, metres.
     pub ground_amsl_m: f64,
-    /// When the flown path passes the waypoint, seconds after departure (the middle of
-    /// the arc that flies its corner).
+    /// When the flown path passes the waypoint, seconds from the fleet's departure (t = 0;
+    /// a UAV with a departure delay leaves later): the middle of the arc that flies its
+    /// corner; every waypoint of a run of equal ones gets the run's time
+    /// ([`swarmplan_core::timing::TimedPath::waypoint_times`]).
     pub time_s: f64,
     /// Distance before the waypoint at which the turn starts, R tan(theta / 2), metres:
     /// the acceptance radius that makes an autopilot turn where the assessed arc does
@@ -277,7 +279,7 @@ impl Mission {
             .zip(timed.paths.iter().zip(&flown.paths))
             .enumerate()
         {
-            let times = fp.waypoint_times(p.waypoints.len());
+            let times = fp.waypoint_times(&tp.abs);
             let points = p
                 .waypoints
                 .iter()
