@@ -2,10 +2,13 @@
 //! every algorithm and every run sees the same channel.
 //!
 //! Link a-b is up at time t iff its length is at most R(t, a, b) and (optionally) the straight
-//! line a-b clears the terrain. R = R0 * 10^(-(X(t) + I(t, a, b)) / 20), where X is
-//! Gauss-Markov shadowing in dB, X(t + dt) = rho X(t) + sqrt(1 - rho^2) sigma eps with
-//! rho = exp(-dt / tau), and I is the loss of the interference windows active at t whose disk
-//! holds either end of the link. A loss of X dB shrinks a free-space range by 10^(-X/20).
+//! line a-b clears the terrain. R = R0 * 10^(-X_k / 20) * min(f_a, f_b), where X is
+//! Gauss-Markov shadowing in dB, X_0 = sigma z_0, X_{k+1} = rho X_k + sqrt(1 - rho^2) sigma
+//! z_{k+1} with rho = exp(-dt / tau) and z standard normal draws from ChaCha8 seeded with
+//! `communication.seed`, and f_e = 10^(-I_e / 20) with I_e the summed loss of the windows
+//! active at t whose disk holds end e: the link takes the worse end's loss. A loss of X dB
+//! shrinks a free-space range by 10^(-X/20). The generator, to the bit: docs/model.md,
+//! "Implementation reference".
 
 use glam::DVec3;
 use rand_distr::{Distribution, StandardNormal};

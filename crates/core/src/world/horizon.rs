@@ -300,7 +300,7 @@ mod tests {
                 agree += usize::from(direct == hz.visible(p));
             }
         }
-        // Bins are 0.18 deg wide: only near-grazing rays may disagree.
+        // Bins are 0.056-0.112 deg wide: only near-grazing rays may disagree.
         assert!(agree as f64 >= 0.97 * total as f64, "{agree}/{total}");
     }
 }
