@@ -19,16 +19,29 @@ pub const GENERATED_WINDOWS: usize = 1;
 pub const GENERATED_SIZES: [usize; 3] = [8, 12, 20];
 
 /// A suite's name and what it holds, for `--help` and errors.
-pub const SUITES: [(&str, &str); 7] = [
+pub const SUITES: [(&str, &str); 14] = [
     ("paper", "paper-case1 and paper-case2"),
     (
         "outside",
-        "the 4 outside benchmark instances, 5 UAVs (needs ../shared/data/outside)",
+        "the 28 outside benchmark instances outside-0..27, 5 UAVs (needs ../shared/data/outside)",
     ),
     (
         "outside-delay",
         "the same with departure delays free (timing.max_delay 0.3: outside-K-delay)",
     ),
+    ("outside-u1", "the same with one UAV (outside-K-u1)"),
+    (
+        "outside-dev",
+        "the 22 development instances (all but the held-out 7, 11, 15, 19, 23, 27)",
+    ),
+    ("outside-dev-delay", "the same with departure delays free"),
+    ("outside-dev-u1", "the same with one UAV"),
+    (
+        "outside-held",
+        "the 6 held-out instances 7, 11, 15, 19, 23, 27: only to report a design already kept",
+    ),
+    ("outside-held-delay", "the same with departure delays free"),
+    ("outside-held-u1", "the same with one UAV"),
     (
         "generated-8",
         "20 generated instances, 8 UAVs, 12 threats, 1 interference window, spread starts",
@@ -40,6 +53,32 @@ pub const SUITES: [(&str, &str); 7] = [
         "generated-8, generated-12 and generated-20 (60 instances)",
     ),
 ];
+
+/// The outside instances of suite `name` (`outside[-dev|-held][-delay|-u1]`), or `None`
+/// when `name` is not of that form.
+fn outside(name: &str) -> Option<Vec<String>> {
+    use swarmplan_io::outside::{HELD_OUT, INSTANCES};
+    let rest = name.strip_prefix("outside")?;
+    let (split, rest) = if let Some(r) = rest.strip_prefix("-dev") {
+        (Some(false), r)
+    } else if let Some(r) = rest.strip_prefix("-held") {
+        (Some(true), r)
+    } else {
+        (None, rest)
+    };
+    let suffix = match rest {
+        "" => "",
+        "-delay" => "-delay",
+        "-u1" => "-u1",
+        _ => return None,
+    };
+    Some(
+        (0..INSTANCES)
+            .filter(|k| split.is_none_or(|held| HELD_OUT.contains(k) == held))
+            .map(|k| format!("outside-{k}{suffix}"))
+            .collect(),
+    )
+}
 
 /// The generated instances with `uavs` UAVs (seeds 1 to [`GENERATED_INSTANCES`]).
 fn generated(uavs: usize) -> impl Iterator<Item = String> {
@@ -61,14 +100,11 @@ fn generated(uavs: usize) -> impl Iterator<Item = String> {
 /// The scenarios of suite `name`, or `None` for an unknown name.
 #[must_use]
 pub fn suite(name: &str) -> Option<Vec<String>> {
+    if let Some(list) = outside(name) {
+        return Some(list);
+    }
     let list: Vec<String> = match name {
         "paper" => vec!["paper-case1".into(), "paper-case2".into()],
-        "outside" => (0..swarmplan_io::outside::INSTANCES)
-            .map(|k| format!("outside-{k}"))
-            .collect(),
-        "outside-delay" => (0..swarmplan_io::outside::INSTANCES)
-            .map(|k| format!("outside-{k}-delay"))
-            .collect(),
         "generated" => GENERATED_SIZES.into_iter().flat_map(generated).collect(),
         _ => {
             let uavs: usize = name.strip_prefix("generated-")?.parse().ok()?;
@@ -111,11 +147,30 @@ mod tests {
             assert_eq!(loaded.spec.threats.len(), GENERATED_THREATS);
         }
         assert_eq!(load_spec(&eight[0]).unwrap().spec.uavs.len(), 8);
+        // The outside splits partition the set; held-out instances stay out of dev.
+        let (dev, held) = (
+            suite("outside-dev").unwrap(),
+            suite("outside-held").unwrap(),
+        );
+        assert_eq!((dev.len(), held.len()), (22, 6));
+        assert!(held.contains(&"outside-7".to_string()));
+        assert!(!dev.contains(&"outside-7".to_string()));
+        assert_eq!(suite("outside-held-u1").unwrap()[5], "outside-27-u1");
+        assert_eq!(suite("outside-delay").unwrap().len(), 28);
     }
 
     #[test]
     fn unknown_suites_are_none() {
-        for bad in ["", "generated-9", "generated-", "generated-x", "Paper"] {
+        for bad in [
+            "",
+            "generated-9",
+            "generated-",
+            "generated-x",
+            "Paper",
+            "outside-held-u2",
+            "outside-",
+            "outside-dev-delay-u1",
+        ] {
             assert_eq!(suite(bad), None, "{bad}");
         }
     }

@@ -43,8 +43,13 @@ use crate::scenario::load_builtin;
 /// UAVs of an outside scenario named without `-uN` (the paper's fleet).
 pub const DEFAULT_UAVS: usize = 5;
 
-/// Instances in the shared folder (`outside-0` to `outside-3`).
-pub const INSTANCES: usize = 4;
+/// Instances in the shared folder (`outside-0` to `outside-27`; its README says how they
+/// were made).
+pub const INSTANCES: usize = 28;
+
+/// The held-out instances (the shared folder's README): run only to report a design already
+/// kept, never to choose between variants; the others are the development instances.
+pub const HELD_OUT: [usize; 6] = [7, 11, 15, 19, 23, 27];
 
 /// `timing.max_delay` of the `-delay` variants: a UAV may wait up to 30 % of the mission,
 /// as in generated scenarios with free delays.

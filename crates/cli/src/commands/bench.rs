@@ -28,8 +28,9 @@ pub struct BenchArgs {
     /// Scenarios, comma-separated (default: paper-case1,paper-case2).
     #[arg(long, value_delimiter = ',', conflicts_with = "suite")]
     pub scenarios: Option<Vec<String>>,
-    /// A named suite of scenarios instead of --scenarios: paper, outside (the 4 outside
-    /// benchmark instances), outside-delay (the same with departure delays free),
+    /// A named suite of scenarios instead of --scenarios: paper, outside (the 28 outside
+    /// benchmark instances), outside-dev (22 to tune on), outside-held (6 held out: to report
+    /// a kept design only), each also as -delay (departure delays free) and -u1 (one UAV),
     /// generated-8, generated-12, generated-20 (20 generated instances each), generated (all
     /// 60).
     #[arg(long)]
