@@ -255,10 +255,13 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         print_summary(args, &world, &attempts, &written);
     }
     let line = a.verdict();
-    if args.json {
-        eprintln!("{line}");
-    } else {
-        println!("{line}");
+    let outcome = swarmplan_core::outcome::infeasible_outcome(&world, a);
+    for l in std::iter::once(&line).chain(outcome.as_ref()) {
+        if args.json {
+            eprintln!("{l}");
+        } else {
+            println!("{l}");
+        }
     }
     if args.require_feasible && !a.feasible() {
         return Err(Infeasible(line).into());

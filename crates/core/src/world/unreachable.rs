@@ -111,7 +111,67 @@ pub fn unreachable_feasibility(spec: &ScenarioSpec) -> Vec<Unreachable> {
         });
     }
     walled_in(spec, &mut out);
+    battery_short(spec, &mut out);
     out
+}
+
+/// One entry per UAV whose usable battery cannot cover even the shortest way around the
+/// threats ([`crate::route::RouteMap::length_lower_bound`], at the route grid's resolution)
+/// flown level at its most economical speed: a lower bound on the energy of every plan
+/// (climbs, turns and hovering only add to it).
+fn battery_short(spec: &ScenarioSpec, out: &mut Vec<Unreachable>) {
+    let goal = DVec2::new(spec.goal.position[0], spec.goal.position[1]);
+    let mut bounds: Vec<(DVec2, f64, Option<f64>)> = Vec::new();
+    for (k, u) in spec.uavs.iter().enumerate() {
+        let start = DVec2::new(u.start[0], u.start[1]);
+        let length = match bounds.iter().find(|(s, z, _)| *s == start && *z == u.size) {
+            Some(&(_, _, l)) => l,
+            None => {
+                let map = crate::route::RouteMap::new(&spec.map, &spec.threats, u.size);
+                let l = map.length_lower_bound(start, goal);
+                bounds.push((start, u.size, l));
+                l
+            }
+        };
+        // No way at all is said by `walled_in`.
+        let Some(length) = length else { continue };
+        let model = &spec.energy.model;
+        let (speed, joules) = most_economical(|v| model.power(v, u.payload_kg) * length / v, u.speed);
+        let usable = (1.0 - u.reserve) * u.battery_wh * 3600.0;
+        if joules > usable {
+            out.push(Unreachable {
+                field: format!("uavs[{k}].battery_wh"),
+                reason: format!(
+                    "the shortest way around the threats is at least {length:.0} m (route grid, {:.1} m cells) and takes at least {joules:.0} J flown level at its most economical speed {speed:.1} m/s, more than the usable {usable:.0} J ({} Wh less a {} reserve): {:.2} Wh short",
+                    crate::route::RouteMap::new(&spec.map, &[], u.size).cell(),
+                    number(u.battery_wh),
+                    number(u.reserve),
+                    (joules - usable) / 3600.0
+                ),
+            });
+        }
+    }
+}
+
+/// The speed in `[lo, hi]` where `energy` is least, and that energy: a golden-section
+/// search (the rotary-wing energy per metre is unimodal in speed), then the ends.
+fn most_economical(energy: impl Fn(f64) -> f64, [lo, hi]: [f64; 2]) -> (f64, f64) {
+    let lo = lo.max(1e-3);
+    let hi = hi.max(lo);
+    let phi = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut a, mut b) = (lo, hi);
+    for _ in 0..80 {
+        let (c, d) = (b - phi * (b - a), a + phi * (b - a));
+        if energy(c) < energy(d) {
+            b = d;
+        } else {
+            a = c;
+        }
+    }
+    [0.5 * (a + b), lo, hi]
+        .into_iter()
+        .map(|v| (v, energy(v)))
+        .fold((lo, f64::INFINITY), |best, x| if x.1 < best.1 { x } else { best })
 }
 
 /// One entry per start that threats wall off from the goal (UAVs sharing it named once).
