@@ -59,6 +59,13 @@ enum ScenarioCommand {
         /// Built-in name (see `scenario list`) or path to a TOML file.
         scenario: String,
     },
+    /// Say, before any search, whether a way around the threats exists from each start (the
+    /// route layer: widest way, shortest length) and every cause that rules all plans out
+    /// (exit status 3 when there is one).
+    Check {
+        /// Built-in name (see `scenario list`) or path to a TOML file.
+        scenario: String,
+    },
     /// Write an editable scenario on a georeferenced DEM from start/goal latitude and longitude.
     New(commands::scenario_new::ScenarioNewArgs),
     /// Write a random scenario (threats, starts, goal, terrain) from a seed.
@@ -120,6 +127,9 @@ fn main() -> ExitCode {
         Command::Scenario(ScenarioCommand::List) => commands::scenario::list(),
         Command::Scenario(ScenarioCommand::Show { scenario }) => {
             commands::scenario::show(&scenario)
+        }
+        Command::Scenario(ScenarioCommand::Check { scenario }) => {
+            commands::scenario::check(&scenario)
         }
         Command::Plan(args) => commands::plan::run_command(&args),
         Command::Evaluate(args) => commands::evaluate::run(&args),

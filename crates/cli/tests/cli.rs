@@ -330,13 +330,63 @@ fn an_infeasible_plan_says_so_last_and_require_feasible_exits_3() {
         .assert()
         .code(3);
     let stdout = String::from_utf8_lossy(&out.get_output().stdout).to_string();
-    let last = stdout.lines().last().unwrap_or_default();
-    assert!(last.starts_with("INFEASIBLE: "), "{stdout}");
-    assert!(last.contains(" violations ("), "{last}");
+    // The verdict, then what the route layer says: nothing rules every plan out on tiny.
+    let lines: Vec<&str> = stdout.lines().collect();
+    let (verdict, outcome) = (lines[lines.len() - 2], lines[lines.len() - 1]);
+    assert!(verdict.starts_with("INFEASIBLE: "), "{stdout}");
+    assert!(verdict.contains(" violations ("), "{verdict}");
+    assert!(outcome.starts_with("none found: "), "{outcome}");
+    assert!(
+        outcome.contains("widest way between the threats keeps"),
+        "{outcome}"
+    );
     // Outputs were written before the exit.
     assert!(dir.path().join("plan.json").exists());
     let stderr = String::from_utf8_lossy(&out.get_output().stderr).to_string();
     assert!(stderr.contains("--require-feasible"), "{stderr}");
+}
+
+#[test]
+fn scenario_check_says_when_threats_wall_the_start_off_from_the_goal() {
+    swarmplan()
+        .args(["scenario", "check", "tiny"])
+        .assert()
+        .success()
+        .stdout(predicate::str::contains(
+            "the widest way between the threats keeps",
+        ))
+        .stdout(predicate::str::contains("no cause found"));
+    // Eight threats of hard radius 13 m on a ring of 25 m around UGV0 (270, 170): the
+    // 19 m between neighbouring axes leave no gap.
+    let tiny = swarmplan()
+        .args(["scenario", "show", "tiny"])
+        .assert()
+        .success();
+    let text = String::from_utf8(tiny.get_output().stdout.clone()).unwrap();
+    let ring: String = (0..8)
+        .map(|k| {
+            let a = f64::from(k) * std::f64::consts::FRAC_PI_4;
+            format!(
+                "[[threats]]\nx = {}\ny = {}\nz = 60.0\nr = 12.0\n\n",
+                270.0 + 25.0 * a.cos(),
+                170.0 + 25.0 * a.sin()
+            )
+        })
+        .collect();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("ringed.toml");
+    std::fs::write(&path, text.replacen("[goal]", &format!("{ring}[goal]"), 1)).unwrap();
+    swarmplan()
+        .args(["scenario", "check"])
+        .arg(&path)
+        .assert()
+        .code(3)
+        .stdout(predicate::str::contains(
+            "no way around the threats' hard zones reaches UGV0",
+        ))
+        .stdout(predicate::str::contains(
+            "no plan exists: uavs[0].start: (30, 30) is walled off from the goal",
+        ));
 }
 
 #[test]

@@ -9,6 +9,7 @@ use glam::DVec2;
 
 use crate::cost::Assessment;
 use crate::route::RouteMap;
+use crate::world::spec::ScenarioSpec;
 use crate::world::unreachable::unreachable_feasibility;
 use crate::world::World;
 
@@ -32,28 +33,7 @@ pub fn infeasible_outcome(world: &World, assessment: &Assessment) -> Option<Stri
         };
         return Some(format!("no plan exists: {first}{more}"));
     }
-    let goal = world.goal_at(crate::world::DEPARTURE).truncate();
-    let mut ways = Vec::new();
-    let mut seen: Vec<(DVec2, f64)> = Vec::new();
-    for (k, u) in spec.uavs.iter().enumerate() {
-        let start = DVec2::new(u.start[0], u.start[1]);
-        if seen.contains(&(start, u.size)) {
-            continue;
-        }
-        seen.push((start, u.size));
-        let map = RouteMap::new(&spec.map, &spec.threats, u.size);
-        if let Some(m) = map.widest_margin(start, goal, WIDEST_CAP_M) {
-            let width = if m >= WIDEST_CAP_M {
-                format!("at least {WIDEST_CAP_M:.0} m")
-            } else {
-                format!("{m:.1} m")
-            };
-            ways.push(format!(
-                "from UAV {k}'s start the widest way between the threats keeps {width} beyond their hard zones (route grid, {:.1} m cells)",
-                map.cell()
-            ));
-        }
-    }
+    let ways: Vec<String> = ways(spec).into_iter().map(|w| w.sentence()).collect();
     let counts = count_by_kind(assessment);
     Some(format!(
         "none found: the search ended with {counts} left, but no cause rules every plan out; {}",
@@ -77,4 +57,80 @@ fn count_by_kind(a: &Assessment) -> String {
     let n: usize = counts.values().sum();
     let kinds: Vec<String> = counts.iter().map(|(k, n)| format!("{k} {n}")).collect();
     format!("{n} hard violations ({})", kinds.join(", "))
+}
+
+/// What the route layer finds for one start (and the UAVs that share it and its size).
+#[derive(Debug, Clone, PartialEq)]
+pub struct StartWays {
+    /// The UAVs flying from this start.
+    pub uavs: Vec<usize>,
+    /// The route grid's cell, m.
+    pub cell: f64,
+    /// A lower bound on the length of any way to UAV0's goal around the hard zones, m
+    /// (`None`: no way).
+    pub shortest_at_least: Option<f64>,
+    /// The widest way's margin beyond the hard zones, m, capped at 100 m (`None`: no way).
+    pub widest_margin: Option<f64>,
+}
+
+impl StartWays {
+    /// One sentence for humans.
+    #[must_use]
+    pub fn sentence(&self) -> String {
+        let who = match self.uavs.as_slice() {
+            [k] => format!("from UAV {k}'s start"),
+            many => format!(
+                "from the start of UAVs {}",
+                many.iter()
+                    .map(usize::to_string)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        };
+        match (self.shortest_at_least, self.widest_margin) {
+            (Some(l), Some(m)) => {
+                let width = if m >= WIDEST_CAP_M {
+                    format!("at least {WIDEST_CAP_M:.0} m")
+                } else {
+                    format!("{m:.1} m")
+                };
+                format!(
+                    "{who} the widest way between the threats keeps {width} beyond their hard zones and the shortest is at least {l:.0} m long (route grid, {:.1} m cells)",
+                    self.cell
+                )
+            }
+            (Some(l), None) => format!(
+                "{who} a way around the threats' hard zones can pass only through a gap narrower than the route grid resolves ({:.1} m cells; at least {l:.0} m long)",
+                self.cell
+            ),
+            (None, _) => format!(
+                "{who} no way around the threats' hard zones reaches UGV0 (route grid, {:.1} m cells)",
+                self.cell
+            ),
+        }
+    }
+}
+
+/// The route layer's findings for every distinct start (and UAV size) of `spec`.
+#[must_use]
+pub fn ways(spec: &ScenarioSpec) -> Vec<StartWays> {
+    let g = spec.goal.position;
+    let goal = DVec2::new(g[0], g[1]);
+    let mut out: Vec<(DVec2, f64, StartWays)> = Vec::new();
+    for (k, u) in spec.uavs.iter().enumerate() {
+        let start = DVec2::new(u.start[0], u.start[1]);
+        if let Some((_, _, w)) = out.iter_mut().find(|(s, z, _)| *s == start && *z == u.size) {
+            w.uavs.push(k);
+            continue;
+        }
+        let map = RouteMap::new(&spec.map, &spec.threats, u.size);
+        let found = StartWays {
+            uavs: vec![k],
+            cell: map.cell(),
+            shortest_at_least: map.length_lower_bound(start, goal),
+            widest_margin: map.widest_margin(start, goal, WIDEST_CAP_M),
+        };
+        out.push((start, u.size, found));
+    }
+    out.into_iter().map(|(_, _, w)| w).collect()
 }

@@ -187,13 +187,15 @@ impl ProgressBar {
 /// Exit status of `plan --require-feasible` for an infeasible plan (2 is bad input).
 pub const EXIT_INFEASIBLE: u8 = 3;
 
-/// An infeasible plan under `--require-feasible`: the outputs were written.
+/// An infeasible outcome that exits with [`EXIT_INFEASIBLE`]: a plan under
+/// `--require-feasible` (the outputs were written), or a scenario `scenario check` finds no
+/// plan can satisfy. The text says which.
 #[derive(Debug)]
 pub struct Infeasible(pub String);
 
 impl std::fmt::Display for Infeasible {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{} (--require-feasible)", self.0)
+        f.write_str(&self.0)
     }
 }
 
@@ -264,7 +266,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         }
     }
     if args.require_feasible && !a.feasible() {
-        return Err(Infeasible(line).into());
+        return Err(Infeasible(format!("{line} (--require-feasible)")).into());
     }
     Ok(())
 }

@@ -1,4 +1,4 @@
-//! `swarmplan scenario list|show`.
+//! `swarmplan scenario list|show|check`.
 
 use anyhow::Result;
 use swarmplan_io::scenario::{to_toml, BUILTIN};
@@ -17,4 +17,30 @@ pub fn show(scenario: &str) -> Result<()> {
     let loaded = load_spec(scenario)?;
     print!("{}", to_toml(&loaded.spec));
     Ok(())
+}
+
+/// `scenario check`: what the route layer finds before any search, and every cause that
+/// rules all plans out; exit status 3 when there is one.
+pub fn check(scenario: &str) -> Result<()> {
+    let loaded = load_spec(scenario)?;
+    let spec = &loaded.spec;
+    for w in swarmplan_core::outcome::ways(spec) {
+        println!("{}", w.sentence());
+    }
+    let causes = swarmplan_core::world::unreachable::unreachable_feasibility(spec);
+    if causes.is_empty() {
+        println!(
+            "no cause found that rules every plan out (terrain, climbs, turns, separation and contact are for the search to settle)"
+        );
+        return Ok(());
+    }
+    for c in &causes {
+        println!("no plan exists: {c}");
+    }
+    Err(crate::commands::plan::Infeasible(format!(
+        "{}: {} causes rule every plan out",
+        loaded.origin,
+        causes.len()
+    ))
+    .into())
 }

@@ -133,10 +133,36 @@ fn battery_short(spec: &ScenarioSpec, out: &mut Vec<Unreachable>) {
                 l
             }
         };
-        // No way at all is said by `walled_in`.
-        let Some(length) = length else { continue };
+        let Some(length) = length else {
+            // No way: said by `walled_in` when the start is walled in; otherwise the
+            // threats wall the goal off, which only the route grid sees.
+            // Already said: a start walled in or in a hard zone, a goal in a hard zone.
+            let start_field = format!("uavs[{k}].start");
+            let walled = out
+                .iter()
+                .any(|c| c.field == start_field || c.field == "goal.position");
+            let first_of_start = spec.uavs[..k]
+                .iter()
+                .all(|v| v.start[..2] != u.start[..2] || v.size != u.size);
+            if !walled && first_of_start {
+                out.push(Unreachable {
+                    field: "threats".into(),
+                    reason: format!(
+                        "no way from uavs[{k}].start ({}, {}) to the goal ({}, {}) passes between their hard zones (radius + UAV size {}), even on a route grid that shrinks each by half a cell diagonal ({:.1} m cells): they wall the goal off",
+                        u.start[0],
+                        u.start[1],
+                        goal.x,
+                        goal.y,
+                        number(u.size),
+                        crate::route::RouteMap::new(&spec.map, &[], u.size).cell()
+                    ),
+                });
+            }
+            continue;
+        };
         let model = &spec.energy.model;
-        let (speed, joules) = most_economical(|v| model.power(v, u.payload_kg) * length / v, u.speed);
+        let (speed, joules) =
+            most_economical(|v| model.power(v, u.payload_kg) * length / v, u.speed);
         let usable = (1.0 - u.reserve) * u.battery_wh * 3600.0;
         if joules > usable {
             out.push(Unreachable {
@@ -171,7 +197,10 @@ fn most_economical(energy: impl Fn(f64) -> f64, [lo, hi]: [f64; 2]) -> (f64, f64
     [0.5 * (a + b), lo, hi]
         .into_iter()
         .map(|v| (v, energy(v)))
-        .fold((lo, f64::INFINITY), |best, x| if x.1 < best.1 { x } else { best })
+        .fold(
+            (lo, f64::INFINITY),
+            |best, x| if x.1 < best.1 { x } else { best },
+        )
 }
 
 /// One entry per start that threats wall off from the goal (UAVs sharing it named once).
