@@ -10,7 +10,7 @@ use glam::DVec2;
 use crate::cost::Assessment;
 use crate::route::RouteMap;
 use crate::world::spec::ScenarioSpec;
-use crate::world::unreachable::unreachable_feasibility;
+use crate::world::unreachable::unreachable_in_world;
 use crate::world::World;
 
 /// Widest margin beyond the hard zones that the route layer looks for, m.
@@ -25,7 +25,7 @@ pub fn infeasible_outcome(world: &World, assessment: &Assessment) -> Option<Stri
         return None;
     }
     let spec = world.spec();
-    let causes = unreachable_feasibility(spec);
+    let causes = unreachable_in_world(world);
     if let Some(first) = causes.first() {
         let more = match causes.len() {
             1 => String::new(),

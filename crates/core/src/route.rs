@@ -108,6 +108,21 @@ impl RouteMap {
         (clamp(q.x, self.nx), clamp(q.y, self.ny))
     }
 
+    /// Whether the segment a-b keeps `margin` beyond every hard zone.
+    #[must_use]
+    pub fn segment_clear(&self, a: DVec2, b: DVec2, margin: f64) -> bool {
+        let ab = b - a;
+        let len2 = ab.length_squared();
+        self.discs.iter().all(|(c, r)| {
+            let t = if len2 > 0.0 {
+                ((*c - a).dot(ab) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (a + ab * t).distance_squared(*c) >= (r + margin).max(0.0).powi(2)
+        })
+    }
+
     /// Whether `p` keeps `margin` beyond every hard zone.
     fn clear(&self, p: DVec2, margin: f64) -> bool {
         self.discs
@@ -120,20 +135,39 @@ impl RouteMap {
     /// `None`. The start's and the goal's cells are taken as free.
     #[must_use]
     pub fn way(&self, start: DVec2, goal: DVec2, margin: f64) -> Option<Way> {
+        self.cheapest_way(start, goal, margin, &|a, b| a.distance(b), 1.0)
+    }
+
+    /// The grid way from `start` to `goal` keeping `margin` beyond every hard zone whose
+    /// summed `step_cost(from, to)` over its steps (between cell centres) is least, or
+    /// `None`. `per_metre` must be a lower bound of `step_cost` per metre of the straight
+    /// line (it makes A*'s heuristic, which must not overestimate).
+    #[must_use]
+    pub fn cheapest_way(
+        &self,
+        start: DVec2,
+        goal: DVec2,
+        margin: f64,
+        step_cost: &dyn Fn(DVec2, DVec2) -> f64,
+        per_metre: f64,
+    ) -> Option<Way> {
         let (from, to) = (self.cell_of(start), self.cell_of(goal));
-        // Step costs in millimetres: integers, as A* needs a total order.
+        // Costs in thousandths, rounded up: integers, as A* needs a total order.
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        let mm = |m: f64| (m * 1000.0).round() as u64;
-        let (straight, diagonal) = (mm(self.cell), mm(self.cell * std::f64::consts::SQRT_2));
-        let octile = |&(i, j): &(i32, i32)| {
-            let (dx, dy) = ((i - to.0).unsigned_abs(), (j - to.1).unsigned_abs());
-            let (lo, hi) = (u64::from(dx.min(dy)), u64::from(dx.max(dy)));
-            lo * diagonal + (hi - lo) * straight
+        let milli = |c: f64| (c * 1000.0).ceil().max(0.0) as u64;
+        let end = self.centre(to);
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let heuristic = |c: &(i32, i32)| {
+            // Rounded down, so it never exceeds a rounded-up cost.
+            (self.centre(*c).distance(end) * per_metre * 1000.0)
+                .floor()
+                .max(0.0) as u64
         };
         let free = |c: (i32, i32)| c == to || self.clear(self.centre(c), margin);
         let (cells, _) = astar(
             &from,
             |&(i, j)| {
+                let here = self.centre((i, j));
                 let mut next = Vec::with_capacity(8);
                 for (di, dj) in [
                     (-1, -1),
@@ -149,18 +183,11 @@ impl RouteMap {
                     if c.0 < 0 || c.1 < 0 || c.0 >= self.nx || c.1 >= self.ny || !free(c) {
                         continue;
                     }
-                    next.push((
-                        c,
-                        if di != 0 && dj != 0 {
-                            diagonal
-                        } else {
-                            straight
-                        },
-                    ));
+                    next.push((c, milli(step_cost(here, self.centre(c)))));
                 }
                 next
             },
-            octile,
+            heuristic,
             |c| *c == to,
         )?;
         let mut points = Vec::with_capacity(cells.len() + 2);

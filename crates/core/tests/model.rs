@@ -1319,3 +1319,41 @@ fn the_shadowing_series_is_reproduced_from_its_documented_definition() {
         assert_eq!(channel.shadowing_db(k), want, "step {k}");
     }
 }
+
+#[test]
+fn a_battery_short_of_the_way_and_the_climb_is_a_cause_no_plan_can_be_feasible() {
+    use swarmplan_core::world::unreachable::{unreachable_feasibility, unreachable_in_world};
+    // From (100, 100) to UGV0 at (900, 900): at least 1131 m. The default rotary wing needs
+    // about 9.4 J per metre at its most economical speed, so about 10.6 kJ flown level:
+    // within a 6 Wh battery's usable 17.3 kJ, beyond a 3 Wh one's 8.6 kJ.
+    let mut s = spec(&[[100.0, 100.0, 150.0]]);
+    s.uavs[0].battery_wh = 6.0;
+    assert!(unreachable_feasibility(&s).is_empty());
+    s.uavs[0].battery_wh = 3.0;
+    let causes = unreachable_feasibility(&s);
+    assert_eq!(causes.len(), 1, "{causes:?}");
+    assert_eq!(causes[0].field, "uavs[0].battery_wh");
+    assert!(
+        causes[0].reason.contains("at least 1131 m"),
+        "{}",
+        causes[0].reason
+    );
+    // On ground that rises towards UGV0, 400 m from the start's to UGV0's, the 6 Wh battery
+    // must also lift the UAV 400 m (24.9 N x 400 m = 10.0 kJ): 20.6 kJ, beyond its 17.3 kJ.
+    s.uavs[0].battery_wh = 6.0;
+    let n = 11;
+    let h: Vec<f64> = (0..n)
+        .flat_map(|j| (0..n).map(move |i| 500.0 * f64::from(i.min(j) as u32) / 10.0))
+        .collect();
+    let slope = Terrain::new(n, n, (0.0, 0.0), (100.0, 100.0), h, Sampling::Bilinear).unwrap();
+    let w = World::new(s.clone(), slope).unwrap();
+    let causes = unreachable_in_world(&w);
+    assert_eq!(causes.len(), 1, "{causes:?}");
+    assert!(
+        causes[0].reason.contains("to rise the 400 m"),
+        "{}",
+        causes[0].reason
+    );
+    // On flat ground the same battery suffices.
+    assert!(unreachable_in_world(&World::new(s, flat()).unwrap()).is_empty());
+}

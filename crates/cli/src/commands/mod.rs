@@ -11,7 +11,7 @@ pub mod scenario_new;
 
 use anyhow::Result;
 use swarmplan_core::world::spec::ScenarioSpec;
-use swarmplan_core::world::unreachable::unreachable_feasibility;
+use swarmplan_core::world::unreachable::{unreachable_feasibility, unreachable_in_world};
 use swarmplan_core::world::World;
 use swarmplan_io::scenario::build_world_noted;
 
@@ -30,13 +30,21 @@ pub fn load_world(args: &ScenarioArgs) -> Result<World> {
     for n in notes {
         eprintln!("note: {n}");
     }
-    warn_unreachable(&loaded.origin, world.spec());
+    warn_unreachable_in_world(&loaded.origin, &world);
     Ok(world)
 }
 
-/// Prints `warning: ORIGIN: FIELD: WHY; no plan can be feasible` for each cause found.
+/// Prints `warning: ORIGIN: FIELD: WHY; no plan can be feasible` for each cause found in
+/// `spec` alone (before any terrain is read).
 pub fn warn_unreachable(origin: &str, spec: &ScenarioSpec) {
     for u in unreachable_feasibility(spec) {
+        eprintln!("warning: {origin}: {u}");
+    }
+}
+
+/// [`warn_unreachable`] with the causes the terrain adds ([`unreachable_in_world`]).
+pub fn warn_unreachable_in_world(origin: &str, world: &World) {
+    for u in unreachable_in_world(world) {
         eprintln!("warning: {origin}: {u}");
     }
 }

@@ -23,11 +23,12 @@ pub fn show(scenario: &str) -> Result<()> {
 /// rules all plans out; exit status 3 when there is one.
 pub fn check(scenario: &str) -> Result<()> {
     let loaded = load_spec(scenario)?;
-    let spec = &loaded.spec;
+    let world = swarmplan_io::scenario::build_world(&loaded, None)?;
+    let spec = world.spec();
     for w in swarmplan_core::outcome::ways(spec) {
         println!("{}", w.sentence());
     }
-    let causes = swarmplan_core::world::unreachable::unreachable_feasibility(spec);
+    let causes = swarmplan_core::world::unreachable::unreachable_in_world(&world);
     if causes.is_empty() {
         println!(
             "no cause found that rules every plan out (terrain, climbs, turns, separation and contact are for the search to settle)"

@@ -51,6 +51,9 @@ pub enum InitKind {
     /// of a random few on one. Not swarmplan's default: it helps on the outside instances
     /// with delays and costs paper-case2 contact (docs/results.md, "A fanned start").
     Fan,
+    /// As `corridor`, on the route layer's cheapest way by energy over the terrain
+    /// ([`super::routed`]) instead of the shortest threat-free corridor.
+    Route,
 }
 
 /// Largest sideways bow of a `corridor` path, as a share of its start-goal distance.
@@ -66,7 +69,13 @@ pub const FAN_SPREAD: f64 = 0.3;
 
 impl InitKind {
     /// Every initialisation.
-    pub const ALL: [Self; 4] = [Self::Uniform, Self::Line, Self::Corridor, Self::Fan];
+    pub const ALL: [Self; 5] = [
+        Self::Uniform,
+        Self::Line,
+        Self::Corridor,
+        Self::Fan,
+        Self::Route,
+    ];
 
     /// The name used on the command line and in records (`uniform`, ...).
     #[must_use]
@@ -76,6 +85,7 @@ impl InitKind {
             Self::Line => "line",
             Self::Corridor => "corridor",
             Self::Fan => "fan",
+            Self::Route => "route",
         }
     }
 }
@@ -93,7 +103,9 @@ impl FromStr for InitKind {
             .into_iter()
             .find(|k| k.name().eq_ignore_ascii_case(s))
             .ok_or_else(|| {
-                format!("unknown initialisation `{s}`; expected uniform, line, corridor or fan")
+                format!(
+                    "unknown initialisation `{s}`; expected uniform, line, corridor, fan or route"
+                )
             })
     }
 }

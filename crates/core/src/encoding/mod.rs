@@ -12,6 +12,7 @@ pub mod delayed;
 pub mod init;
 pub mod paced;
 mod per_block;
+pub mod routed;
 pub mod spherical;
 
 pub use init::InitKind;

@@ -70,10 +70,10 @@ impl<'w> PlanningProblem<'w> {
     /// corridors when `init` is `corridor`); a free pace or free delays add their variables.
     #[must_use]
     pub fn new(world: &'w World, kind: EncodingKind, init: InitKind) -> Self {
-        let corridors = if init == InitKind::Corridor {
-            encoding::corridor::corridors(world)
-        } else {
-            Vec::new()
+        let corridors = match init {
+            InitKind::Corridor => encoding::corridor::corridors(world),
+            InitKind::Route => encoding::routed::route_guides(world),
+            _ => Vec::new(),
         };
         Self::with_corridors(world, kind, init, corridors)
     }
@@ -284,7 +284,7 @@ impl Problem for PlanningProblem<'_> {
         match self.init {
             InitKind::Uniform => return fill_uniform(self.encoding.bounds(), rng, out),
             InitKind::Line => sample_line_plan(&self.frame, rng, &mut plan),
-            InitKind::Corridor => {
+            InitKind::Corridor | InitKind::Route => {
                 sample_corridor_plan(&self.frame, &self.corridors, rng, &mut plan);
             }
             InitKind::Fan => sample_fan_plan(&self.frame, rng, &mut plan),

@@ -111,18 +111,55 @@ pub fn unreachable_feasibility(spec: &ScenarioSpec) -> Vec<Unreachable> {
         });
     }
     walled_in(spec, &mut out);
-    battery_short(spec, &mut out);
+    battery_short(spec, |_| 0.0, &mut out);
+    out
+}
+
+/// [`unreachable_feasibility`] with what the terrain adds: the battery bound counts the
+/// net climb from each UAV's start to UGV0 (absolute altitudes), which every plan flies at
+/// least (metres climbed sum the rises, and the rises outweigh the falls by the net climb).
+#[must_use]
+pub fn unreachable_in_world(world: &super::World) -> Vec<Unreachable> {
+    let spec = world.spec();
+    let mut out = unreachable_feasibility(spec);
+    out.retain(|c| !c.field.ends_with(".battery_wh"));
+    let goal = world.absolute(world.goal_at(super::DEPARTURE)).z;
+    battery_short(
+        spec,
+        |k| (goal - world.absolute(world.start(k)).z).max(0.0),
+        &mut out,
+    );
     out
 }
 
 /// One entry per UAV whose usable battery cannot cover even the shortest way around the
 /// threats ([`crate::route::RouteMap::length_lower_bound`], at the route grid's resolution)
-/// flown level at its most economical speed: a lower bound on the energy of every plan
-/// (climbs, turns and hovering only add to it).
-fn battery_short(spec: &ScenarioSpec, out: &mut Vec<Unreachable>) {
+/// at its most economical speed plus m g times `net_climb(k)` (metres UAV k must rise from
+/// its start to UGV0): a lower bound on the energy of every plan (further climbs, turns and
+/// hovering only add to it).
+fn battery_short(
+    spec: &ScenarioSpec,
+    net_climb: impl Fn(usize) -> f64,
+    out: &mut Vec<Unreachable>,
+) {
     let goal = DVec2::new(spec.goal.position[0], spec.goal.position[1]);
     let mut bounds: Vec<(DVec2, f64, Option<f64>)> = Vec::new();
+    // UAVs alike (same start, size and energy settings) are named in their first one's entry.
+    let alike = |a: &super::spec::UavSpec, b: &super::spec::UavSpec| {
+        a.start == b.start
+            && a.size == b.size
+            && a.battery_wh == b.battery_wh
+            && a.reserve == b.reserve
+            && a.payload_kg == b.payload_kg
+            && a.speed == b.speed
+    };
     for (k, u) in spec.uavs.iter().enumerate() {
+        if spec.uavs[..k].iter().any(|v| alike(u, v)) {
+            continue;
+        }
+        let others: Vec<usize> = (k + 1..spec.uavs.len())
+            .filter(|&j| alike(u, &spec.uavs[j]))
+            .collect();
         let start = DVec2::new(u.start[0], u.start[1]);
         let length = match bounds.iter().find(|(s, z, _)| *s == start && *z == u.size) {
             Some(&(_, _, l)) => l,
@@ -161,18 +198,31 @@ fn battery_short(spec: &ScenarioSpec, out: &mut Vec<Unreachable>) {
             continue;
         };
         let model = &spec.energy.model;
-        let (speed, joules) =
+        let (speed, cruise) =
             most_economical(|v| model.power(v, u.payload_kg) * length / v, u.speed);
+        let rise = net_climb(k);
+        let climb = model.mass(u.payload_kg) * super::energy::G * rise;
+        let joules = cruise + climb;
         let usable = (1.0 - u.reserve) * u.battery_wh * 3600.0;
         if joules > usable {
             out.push(Unreachable {
                 field: format!("uavs[{k}].battery_wh"),
                 reason: format!(
-                    "the shortest way around the threats is at least {length:.0} m (route grid, {:.1} m cells) and takes at least {joules:.0} J flown level at its most economical speed {speed:.1} m/s, more than the usable {usable:.0} J ({} Wh less a {} reserve): {:.2} Wh short",
+                    "the shortest way around the threats is at least {length:.0} m (route grid, {:.1} m cells), {cruise:.0} J at its most economical speed {speed:.1} m/s{}, so at least {joules:.0} J, more than the usable {usable:.0} J ({} Wh less a {} reserve): {:.2} Wh short{}",
                     crate::route::RouteMap::new(&spec.map, &[], u.size).cell(),
+                    if rise > 0.0 {
+                        format!(", plus {climb:.0} J to rise the {rise:.0} m from its start to UGV0")
+                    } else {
+                        String::new()
+                    },
                     number(u.battery_wh),
                     number(u.reserve),
-                    (joules - usable) / 3600.0
+                    (joules - usable) / 3600.0,
+                    if others.is_empty() {
+                        String::new()
+                    } else {
+                        format!(" (so are uavs {}, alike)", list(&others))
+                    }
                 ),
             });
         }
