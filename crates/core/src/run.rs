@@ -10,7 +10,10 @@ use serde::{Deserialize, Serialize};
 use crate::cost::Assessment;
 use crate::method::Method;
 use crate::optim::thinned::Thinned;
-use crate::optim::{build, solve_watching, Budget, IterationRecord, OptimizerParams, Outcome};
+use crate::encoding::init::{InitKind, LINE_CORRIDOR_GIVE_UP};
+use crate::optim::{
+    build, solve_watching, Budget, GiveUp, IterationRecord, OptimizerParams, Outcome, Termination,
+};
 use crate::plan::Plan;
 use crate::planning::PlanningProblem;
 use crate::problem::Problem;
@@ -54,21 +57,86 @@ pub fn run(
     req: &RunRequest,
     observer: &mut dyn FnMut(&IterationRecord),
 ) -> RunResult {
-    let problem = PlanningProblem::new(world, req.method.encoding, req.method.init);
     let start = Instant::now();
-    let outcome = search(&problem, req, &mut |r, _| observer(r));
+    let (problem, outcome) = staged_search(world, req, &mut |r, _, _| observer(r));
     finish(world, req, &problem, outcome, start.elapsed().as_secs_f64())
 }
 
-/// The optimisation itself: the request's optimizer from its seed.
+/// The optimisation itself: the request's optimizer from its seed, on `problem`, within
+/// `budget`, continuing `rng`.
 fn search(
     problem: &dyn Problem,
     req: &RunRequest,
+    budget: Budget,
+    rng: &mut crate::rng::Rng,
     observer: &mut dyn FnMut(&IterationRecord, &[f64]),
 ) -> Outcome {
     let mut optimizer = build(req.method.optimizer, &req.params);
+    solve_watching(problem, optimizer.as_mut(), budget, rng, observer)
+}
+
+/// An observer of a staged run: each record, the best point, and the problem it is a point
+/// of (the stage's).
+type StageObserver<'a> = dyn FnMut(&IterationRecord, &[f64], &PlanningProblem) + 'a;
+
+/// The search of `req`, staged for the `line-corridor` start: the line run, given up when it
+/// is still far from feasible at half its evaluation budget ([`LINE_CORRIDOR_GIVE_UP`]),
+/// then a corridor run with the evaluations left, the same generator going on; the better
+/// of the two by Deb's rules is kept, with the problem that decodes it. Records of the
+/// second stage count on from the first's evaluations and iterations. Any other start is
+/// one stage.
+fn staged_search<'w>(
+    world: &'w World,
+    req: &RunRequest,
+    observer: &mut StageObserver<'_>,
+) -> (PlanningProblem<'w>, Outcome) {
     let mut rng = rng_from_seed(req.seed);
-    solve_watching(problem, optimizer.as_mut(), req.budget, &mut rng, observer)
+    let first = PlanningProblem::new(world, req.method.encoding, req.method.init);
+    let staged = req.method.init == InitKind::LineCorridor;
+    let mut budget = req.budget.clone();
+    if let (true, Some(total)) = (staged, budget.evaluations) {
+        budget.give_up = Some(GiveUp {
+            after_evaluations: total / 2,
+            above_violation: LINE_CORRIDOR_GIVE_UP,
+        });
+    }
+    let outcome = search(&first, req, budget, &mut rng, &mut |r, x| observer(r, x, &first));
+    if outcome.termination != Termination::GaveUp {
+        return (first, outcome);
+    }
+    let second = PlanningProblem::new(world, req.method.encoding, InitKind::Corridor);
+    let mut rest = req.budget.clone();
+    rest.evaluations = req.budget.evaluations.map(|t| t.saturating_sub(outcome.evaluations));
+    rest.iterations = req.budget.iterations.map(|i| i.saturating_sub(outcome.iterations));
+    let (spent, steps) = (outcome.evaluations, outcome.iterations);
+    let later = search(&second, req, rest, &mut rng, &mut |r, x| {
+        let shifted = IterationRecord {
+            iteration: r.iteration + steps,
+            evaluations: r.evaluations + spent,
+            ..*r
+        };
+        observer(&shifted, x, &second);
+    });
+    let mut trace = outcome.trace;
+    trace.extend(later.trace.iter().map(|r| IterationRecord {
+        iteration: r.iteration + steps,
+        evaluations: r.evaluations + spent,
+        ..*r
+    }));
+    let merged = |best_x: Vec<f64>, best| Outcome {
+        best_x,
+        best,
+        evaluations: spent + later.evaluations,
+        iterations: steps + later.iterations,
+        termination: later.termination,
+        trace,
+        restarted_after: Some(spent),
+    };
+    if later.best.better_than(&outcome.best) {
+        (second, merged(later.best_x.clone(), later.best))
+    } else {
+        (first, merged(outcome.best_x, outcome.best))
+    }
 }
 
 /// Decodes and fully assesses the best point of `outcome`.
@@ -110,7 +178,6 @@ pub fn run_with_uav_trace(
     req: &RunRequest,
     progress: &mut dyn FnMut(&IterationRecord),
 ) -> (RunResult, UavTrace) {
-    let problem = PlanningProblem::new(world, req.method.encoding, req.method.init);
     let mut trace: Thinned<Arc<[f64]>> = Thinned::default();
     let mut previous: Option<Arc<[f64]>> = None;
     let mut observing = std::time::Duration::ZERO;
@@ -120,7 +187,7 @@ pub fn run_with_uav_trace(
     // assessment; `crates/io/tests/incremental.rs`).
     let mut last_best: Vec<f64> = Vec::new();
     let mut scratch = crate::cost::Scratch::default();
-    let mut observer = |r: &IterationRecord, best_x: &[f64]| {
+    let mut observer = |r: &IterationRecord, best_x: &[f64], problem: &PlanningProblem| {
         let t0 = Instant::now();
         // Every record gets a row (none when there is no best yet), so that this trace
         // thins exactly as the loop's and row k stays beside record k.
@@ -146,7 +213,7 @@ pub fn run_with_uav_trace(
         observing += t0.elapsed();
     };
     let start = Instant::now();
-    let outcome = search(&problem, req, &mut observer);
+    let (problem, outcome) = staged_search(world, req, &mut observer);
     let seconds = (start.elapsed() - observing).as_secs_f64();
     (
         finish(world, req, &problem, outcome, seconds),

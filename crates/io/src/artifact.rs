@@ -210,6 +210,10 @@ pub struct RunArtifact {
     pub iterations: usize,
     /// Why the search stopped (`time-limit`: not reproducible from the seed alone).
     pub termination: Termination,
+    /// Of a staged run (the `line-corridor` start): the evaluations after which it left
+    /// its line start for the corridor.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub restarted_after: Option<u64>,
     /// Wall time of the optimisation, seconds.
     #[serde(with = "json_f64")]
     pub seconds: f64,
@@ -248,6 +252,7 @@ impl RunArtifact {
             evaluations: result.outcome.evaluations,
             iterations: result.outcome.iterations,
             termination: result.outcome.termination,
+            restarted_after: result.outcome.restarted_after,
             seconds: result.seconds,
             report: AssessmentReport::of(&result.assessment),
             files,

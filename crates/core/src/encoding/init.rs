@@ -54,7 +54,17 @@ pub enum InitKind {
     /// As `corridor`, on the route layer's cheapest way by energy over the terrain
     /// ([`super::routed`]) instead of the shortest threat-free corridor.
     Route,
+    /// `line`, and when the best plan still has more than [`LINE_CORRIDOR_GIVE_UP`]
+    /// violations after half the evaluation budget, `corridor` with the other half (a
+    /// staged run, [`crate::run`]); a run feasible or nearly so by then is the `line` run,
+    /// bit for bit.
+    LineCorridor,
 }
+
+/// The violation measure above which a `line-corridor` run leaves its line start for the
+/// corridor at half its evaluation budget (tuned on the development outside instances,
+/// docs/results.md).
+pub const LINE_CORRIDOR_GIVE_UP: u32 = 5;
 
 /// Largest sideways bow of a `corridor` path, as a share of its start-goal distance.
 pub const CORRIDOR_SPREAD: f64 = 0.01;
@@ -69,12 +79,13 @@ pub const FAN_SPREAD: f64 = 0.3;
 
 impl InitKind {
     /// Every initialisation.
-    pub const ALL: [Self; 5] = [
+    pub const ALL: [Self; 6] = [
         Self::Uniform,
         Self::Line,
         Self::Corridor,
         Self::Fan,
         Self::Route,
+        Self::LineCorridor,
     ];
 
     /// The name used on the command line and in records (`uniform`, ...).
@@ -86,6 +97,7 @@ impl InitKind {
             Self::Corridor => "corridor",
             Self::Fan => "fan",
             Self::Route => "route",
+            Self::LineCorridor => "line-corridor",
         }
     }
 }
@@ -104,7 +116,7 @@ impl FromStr for InitKind {
             .find(|k| k.name().eq_ignore_ascii_case(s))
             .ok_or_else(|| {
                 format!(
-                    "unknown initialisation `{s}`; expected uniform, line, corridor, fan or route"
+                    "unknown initialisation `{s}`; expected uniform, line, corridor, fan, route or line-corridor"
                 )
             })
     }

@@ -116,7 +116,8 @@ pub use progress::{Progress, ProgressUnit};
 pub use pso::{Pso, PsoParams};
 pub use qpso::{Qpso, QpsoParams};
 pub use solve::{
-    solve, solve_watching, Budget, IterationRecord, Outcome, Termination, DEFAULT_ITERATIONS,
+    solve, solve_watching, Budget, GiveUp, IterationRecord, Outcome, Termination,
+    DEFAULT_ITERATIONS,
 };
 
 use crate::problem::Evaluation;

@@ -39,9 +39,24 @@ pub struct Budget {
     /// Stop as soon as the best plan is feasible (false).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub until_feasible: bool,
+    /// Give the run up once it has spent this many evaluations with a best plan whose
+    /// violation measure is still above the given one (none): a staged run then goes on
+    /// from another start ([`crate::run`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub give_up: Option<GiveUp>,
     /// A flag that stops the run between iterations ([`super::cancel`]; none).
     #[serde(skip)]
     pub cancel: super::cancel::Cancel,
+}
+
+/// When a run is given up ([`Budget::give_up`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct GiveUp {
+    /// Evaluations spent before the check.
+    pub after_evaluations: u64,
+    /// The best plan's violation measure above which the run is given up (every violation
+    /// counts at least 1, so this is about a number of violations).
+    pub above_violation: u32,
 }
 
 impl Budget {
@@ -56,6 +71,7 @@ impl Budget {
             evaluations,
             time_limit_ms: None,
             until_feasible: false,
+            give_up: None,
             cancel: super::cancel::Cancel::NONE,
         }
     }
@@ -141,6 +157,8 @@ pub enum Termination {
     /// Stopped from outside ([`super::cancel`]): an interrupted call, whose result is not
     /// kept.
     Cancelled,
+    /// Given up by [`Budget::give_up`]: too far from feasible after the evaluations set.
+    GaveUp,
 }
 
 /// Result of one run.
@@ -160,6 +178,10 @@ pub struct Outcome {
     /// [`TRACE_CAP`](super::thinned::TRACE_CAP) steps, every s-th (s a power of two), the
     /// first feasible and the last ([`super::thinned`]).
     pub trace: Vec<IterationRecord>,
+    /// Of a staged run ([`crate::run`]): the evaluations after which it left its first
+    /// start for the next (`None`: one stage).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub restarted_after: Option<u64>,
 }
 
 /// Runs `optimizer` on `problem` until the budget is spent, calling `observer` after
@@ -211,6 +233,12 @@ pub fn solve_watching(
         if budget.until_feasible && optimizer.best().1.feasible() {
             break Termination::Feasible;
         }
+        if budget.give_up.is_some_and(|g| {
+            ev.count() >= g.after_evaluations
+                && optimizer.best().1.violation > f64::from(g.above_violation)
+        }) {
+            break Termination::GaveUp;
+        }
         if budget
             .time_limit_ms
             .is_some_and(|ms| started.elapsed().as_millis() >= u128::from(ms))
@@ -248,6 +276,7 @@ pub fn solve_watching(
         iterations: iteration,
         termination,
         trace: trace.into_vec(),
+        restarted_after: None,
     }
 }
 

@@ -283,7 +283,9 @@ impl Problem for PlanningProblem<'_> {
         let mut plan = Plan::default();
         match self.init {
             InitKind::Uniform => return fill_uniform(self.encoding.bounds(), rng, out),
-            InitKind::Line => sample_line_plan(&self.frame, rng, &mut plan),
+            InitKind::Line | InitKind::LineCorridor => {
+                sample_line_plan(&self.frame, rng, &mut plan);
+            }
             InitKind::Corridor | InitKind::Route => {
                 sample_corridor_plan(&self.frame, &self.corridors, rng, &mut plan);
             }

@@ -1,0 +1,63 @@
+//! The staged `line-corridor` start ([`swarmplan_core::run`]): a run that is near feasible
+//! at half its budget is the `line` run bit for bit; one far from it goes on from the
+//! corridor with the evaluations left, within the budget, and is the same for the same seed.
+
+#![allow(clippy::unwrap_used)] // tests fail loudly by design
+
+mod common;
+
+use common::{build_world, load_spec};
+
+use swarmplan_core::encoding::init::InitKind;
+use swarmplan_core::method::Method;
+use swarmplan_core::optim::{Budget, OptimizerParams, Termination};
+use swarmplan_core::run::{run, RunRequest};
+use swarmplan_core::world::World;
+
+fn world(name: &str) -> World {
+    build_world(&load_spec(name).unwrap(), None).unwrap()
+}
+
+fn request(init: InitKind, evaluations: u64) -> RunRequest {
+    let mut method = Method::preset("swarmplan").unwrap();
+    method.init = init;
+    RunRequest {
+        method,
+        params: OptimizerParams::default(),
+        budget: Budget::evaluations(evaluations),
+        seed: 7,
+    }
+}
+
+#[test]
+fn a_run_near_feasible_at_half_budget_is_the_line_run() {
+    let w = world("tiny");
+    let line = run(&w, &request(InitKind::Line, 2000), &mut |_| {});
+    let staged = run(&w, &request(InitKind::LineCorridor, 2000), &mut |_| {});
+    assert_eq!(staged.outcome.restarted_after, None);
+    assert_eq!(staged.outcome.best_x, line.outcome.best_x);
+    assert_eq!(staged.outcome.trace, line.outcome.trace);
+    assert_eq!(staged.assessment.total.to_bits(), line.assessment.total.to_bits());
+}
+
+#[test]
+fn a_run_far_from_feasible_at_half_budget_goes_on_from_the_corridor() {
+    // Case 2 after 1,000 evaluations still has more than five violations.
+    let w = world("paper-case2");
+    let req = request(InitKind::LineCorridor, 2000);
+    let staged = run(&w, &req, &mut |_| {});
+    assert_eq!(staged.outcome.restarted_after, Some(1000));
+    assert_eq!(staged.outcome.evaluations, 2000);
+    assert_eq!(staged.outcome.termination, Termination::MaxEvaluations);
+    // The records count on across the stages.
+    let evals: Vec<u64> = staged.outcome.trace.iter().map(|r| r.evaluations).collect();
+    assert!(evals.windows(2).all(|w| w[0] <= w[1]), "{evals:?}");
+    assert_eq!(*evals.last().unwrap(), 2000);
+    // The kept plan is the better stage's, decoded by its own stage: its assessment is
+    // the outcome's evaluation.
+    assert_eq!(staged.assessment.total.to_bits(), staged.outcome.best.cost.to_bits());
+    // The same seed gives the same run.
+    let again = run(&w, &req, &mut |_| {});
+    assert_eq!(again.outcome.best_x, staged.outcome.best_x);
+    assert_eq!(again.outcome.trace, staged.outcome.trace);
+}
