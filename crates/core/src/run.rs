@@ -8,9 +8,9 @@ use std::time::Instant;
 use serde::{Deserialize, Serialize};
 
 use crate::cost::Assessment;
+use crate::encoding::init::{InitKind, LINE_CORRIDOR_GIVE_UP};
 use crate::method::Method;
 use crate::optim::thinned::Thinned;
-use crate::encoding::init::{InitKind, LINE_CORRIDOR_GIVE_UP};
 use crate::optim::{
     build, solve_watching, Budget, GiveUp, IterationRecord, OptimizerParams, Outcome, Termination,
 };
@@ -93,21 +93,29 @@ fn staged_search<'w>(
     let mut rng = rng_from_seed(req.seed);
     let first = PlanningProblem::new(world, req.method.encoding, req.method.init);
     let staged = req.method.init == InitKind::LineCorridor;
-    let mut budget = req.budget.clone();
+    let mut budget = req.budget;
     if let (true, Some(total)) = (staged, budget.evaluations) {
         budget.give_up = Some(GiveUp {
             after_evaluations: total / 2,
             above_violation: LINE_CORRIDOR_GIVE_UP,
         });
     }
-    let outcome = search(&first, req, budget, &mut rng, &mut |r, x| observer(r, x, &first));
+    let outcome = search(&first, req, budget, &mut rng, &mut |r, x| {
+        observer(r, x, &first)
+    });
     if outcome.termination != Termination::GaveUp {
         return (first, outcome);
     }
     let second = PlanningProblem::new(world, req.method.encoding, InitKind::Corridor);
-    let mut rest = req.budget.clone();
-    rest.evaluations = req.budget.evaluations.map(|t| t.saturating_sub(outcome.evaluations));
-    rest.iterations = req.budget.iterations.map(|i| i.saturating_sub(outcome.iterations));
+    let mut rest = req.budget;
+    rest.evaluations = req
+        .budget
+        .evaluations
+        .map(|t| t.saturating_sub(outcome.evaluations));
+    rest.iterations = req
+        .budget
+        .iterations
+        .map(|i| i.saturating_sub(outcome.iterations));
     let (spent, steps) = (outcome.evaluations, outcome.iterations);
     let later = search(&second, req, rest, &mut rng, &mut |r, x| {
         let shifted = IterationRecord {

@@ -37,7 +37,10 @@ fn a_run_near_feasible_at_half_budget_is_the_line_run() {
     assert_eq!(staged.outcome.restarted_after, None);
     assert_eq!(staged.outcome.best_x, line.outcome.best_x);
     assert_eq!(staged.outcome.trace, line.outcome.trace);
-    assert_eq!(staged.assessment.total.to_bits(), line.assessment.total.to_bits());
+    assert_eq!(
+        staged.assessment.total.to_bits(),
+        line.assessment.total.to_bits()
+    );
 }
 
 #[test]
@@ -55,7 +58,10 @@ fn a_run_far_from_feasible_at_half_budget_goes_on_from_the_corridor() {
     assert_eq!(*evals.last().unwrap(), 2000);
     // The kept plan is the better stage's, decoded by its own stage: its assessment is
     // the outcome's evaluation.
-    assert_eq!(staged.assessment.total.to_bits(), staged.outcome.best.cost.to_bits());
+    assert_eq!(
+        staged.assessment.total.to_bits(),
+        staged.outcome.best.cost.to_bits()
+    );
     // The same seed gives the same run.
     let again = run(&w, &req, &mut |_| {});
     assert_eq!(again.outcome.best_x, staged.outcome.best_x);

@@ -86,12 +86,7 @@ pub(super) fn staged_terms(
     // there.
     let collisions = Collisions::of(objective, cutoff.cost);
     let spso_preset = collisions != Collisions::Penalised;
-    let own_sink = if sink.is_collecting() {
-        ViolationSink::collecting(sink.profile)
-    } else {
-        ViolationSink::new(sink.profile)
-    };
-    let mut own = own_sink.deferring(std::mem::take(&mut scratch.deferred));
+    let mut own = own_sink(sink, std::mem::take(&mut scratch.deferred));
     // The least the plan can cost: its terms known so far (the rest are >= 0) and the
     // penalty of the violations found so far.
     let least_cost = |reports: &[UavReport], own: &ViolationSink| {
@@ -179,18 +174,34 @@ pub(super) fn staged_terms(
         }
     }
     if !given_up {
-        // UAV by UAV, waypoint terms before flown terms (a stable sort: within one UAV's
-        // share of either part the order found stands).
-        if let Some(d) = &mut own.deferred {
-            d.sort_by_key(|v| v.uav);
-        }
-        if let Some(list) = &mut own.list {
-            list.sort_by_key(|v| v.uav);
-        }
-        own.replay_into(sink);
+        replay_own(&mut own, sink);
     }
     scratch.deferred = own.deferred.take().unwrap_or_default();
     !given_up
+}
+
+/// The sink of the own phases: it records every violation into `buffer`, and keeps the
+/// list too when `sink` does.
+fn own_sink(sink: &ViolationSink, buffer: Vec<crate::feasibility::Deferred>) -> ViolationSink {
+    let own = if sink.is_collecting() {
+        ViolationSink::collecting(sink.profile)
+    } else {
+        ViolationSink::new(sink.profile)
+    };
+    own.deferring(buffer)
+}
+
+/// Adds the own phases' violations to `sink`, after the fleet's: UAV by UAV, waypoint terms
+/// before flown terms (a stable sort: within one UAV's share of either part the order found
+/// stands).
+fn replay_own(own: &mut ViolationSink, sink: &mut ViolationSink) {
+    if let Some(d) = &mut own.deferred {
+        d.sort_by_key(|v| v.uav);
+    }
+    if let Some(list) = &mut own.list {
+        list.sort_by_key(|v| v.uav);
+    }
+    own.replay_into(sink);
 }
 
 /// The fleet's terms of a bounded assessment ([`fleet_terms`]), given up (false) once the
