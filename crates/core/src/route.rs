@@ -29,6 +29,18 @@ use crate::world::Threat;
 /// Cells along the longer side of the map box.
 pub const CELLS_ALONG: usize = 400;
 
+/// The 8 neighbours of a grid cell, as index steps.
+pub(crate) const NEIGHBOURS: [(i32, i32); 8] = [
+    (-1, -1),
+    (0, -1),
+    (1, -1),
+    (-1, 0),
+    (1, 0),
+    (-1, 1),
+    (0, 1),
+    (1, 1),
+];
+
 /// How much longer an 8-connected grid way is at most than the straight line it follows:
 /// 1 / cos(22.5 deg).
 const OCTILE_STRETCH: f64 = 1.082_392_200_292_394;
@@ -169,16 +181,7 @@ impl RouteMap {
             |&(i, j)| {
                 let here = self.centre((i, j));
                 let mut next = Vec::with_capacity(8);
-                for (di, dj) in [
-                    (-1, -1),
-                    (0, -1),
-                    (1, -1),
-                    (-1, 0),
-                    (1, 0),
-                    (-1, 1),
-                    (0, 1),
-                    (1, 1),
-                ] {
+                for (di, dj) in NEIGHBOURS {
                     let c = (i + di, j + dj);
                     if c.0 < 0 || c.1 < 0 || c.0 >= self.nx || c.1 >= self.ny || !free(c) {
                         continue;

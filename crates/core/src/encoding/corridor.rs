@@ -125,7 +125,8 @@ pub fn corridor(
             continue;
         }
         let (i, j) = (k % nx, k / nx);
-        for (di, dj) in NEIGHBOURS {
+        for (di, dj) in crate::route::NEIGHBOURS {
+            let (di, dj) = (i64::from(di), i64::from(dj));
             let (ni, nj) = (i as i64 + di, j as i64 + dj);
             if ni < 0 || nj < 0 || ni >= nx as i64 || nj >= ny as i64 {
                 continue;
@@ -165,17 +166,6 @@ pub fn corridor(
     }
     Some(pull_string(&points, circles, margin))
 }
-
-const NEIGHBOURS: [(i64, i64); 8] = [
-    (-1, -1),
-    (0, -1),
-    (1, -1),
-    (-1, 0),
-    (1, 0),
-    (-1, 1),
-    (0, 1),
-    (1, 1),
-];
 
 /// Keeps from `points` only the vertices a straight line past them would need: from each
 /// kept vertex, the farthest later one reachable by a segment that keeps the margin.
