@@ -17,7 +17,7 @@ use crate::world::World;
 const WIDEST_CAP_M: f64 = 100.0;
 
 /// The line that follows an infeasible plan's verdict: `no plan exists: ...` when a cause
-/// rules out every plan ([`unreachable_feasibility`]), else `none found: ...`; `None` for a
+/// rules out every plan ([`unreachable_in_world`]), else `none found: ...`; `None` for a
 /// feasible plan.
 #[must_use]
 pub fn infeasible_outcome(world: &World, assessment: &Assessment) -> Option<String> {

@@ -240,7 +240,7 @@ pub fn assess_into(
 /// learns that exactly, for less.
 ///
 /// One driver serves every assessment, full or bounded, report or hot path
-/// ([`staged`]): the terms are computed in three phases ([`term::Phase`]), the UAVs' own
+/// (`cost/staged.rs`): the terms are computed in three phases ([`term::Phase`]), the UAVs' own
 /// terms first, into a sink that records their violations: every UAV's terms on its
 /// waypoints (threat band, altitude, turns, climb, turning radius; under the `spso` preset
 /// and a finite cost cutoff they stop at a collision, which makes the cost +inf), checked
