@@ -88,7 +88,8 @@ class Problem:
         method: the method whose encoding and initialisation to use (``swarmplan``,
             ``gwo``, ``pso``, ... or ``optimizer/encoding/init``).
         encoding: replaces the method's encoding (``spherical``, ``cartesian``, ``angle``).
-        init: replaces the method's initialisation (``uniform``, ``line``, ``corridor``, ``fan``).
+        init: replaces the method's initialisation (``uniform``, ``line``, ``corridor``,
+            ``fan``, ``route``, ``line-corridor``).
         profile: ``strict`` or ``paper``, replacing the scenario's feasibility profile.
     """
 
