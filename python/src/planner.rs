@@ -17,7 +17,9 @@ use crate::{args, interrupt, scenario};
 
 /// Plans `scenario` and returns JSON with `run` (the CLI's `run.json`), `plan` (its
 /// `plan.json`), `convergence` (its `convergence.csv` rows), `uav_costs` (per row of
-/// `convergence` and UAV), `verdict` (the last line `plan` prints) and `notes`.
+/// `convergence` and UAV), `verdict` (the verdict line `plan` prints), `outcome` (the line
+/// `plan` prints after an infeasible verdict: `no plan exists: ...` or `none found: ...`;
+/// null for a feasible plan) and `notes`.
 #[pyfunction]
 #[pyo3(signature = (
     scenario="paper-case1", method="swarmplan", seed=None, evaluations=None, iterations=None,
@@ -96,6 +98,7 @@ pub fn plan(
         "convergence": convergence,
         "uav_costs": uav_trace.iter().map(|row| &row[..]).collect::<Vec<&[f64]>>(),
         "verdict": result.assessment.verdict(),
+        "outcome": swarmplan_core::outcome::infeasible_outcome(world, &result.assessment),
         "notes": loaded.notes,
     });
     serde_json::to_string(&out).map_err(to_py)

@@ -319,8 +319,10 @@ def plan(
         the per-UAV report and the violations), ``plan`` (``plan.json``), ``feasible``,
         ``violations``, ``convergence`` (a list of dicts per iteration; past 65,536
         iterations every s-th, each dict naming its iteration), ``uav_costs``
-        (per row of ``convergence`` and UAV), ``verdict`` (the last line ``plan`` prints)
-        and ``notes``.
+        (per row of ``convergence`` and UAV), ``verdict`` (the verdict line ``plan``
+        prints), ``outcome`` (the line ``plan`` prints after an infeasible verdict,
+        ``no plan exists: ...`` or ``none found: ...``; None for a feasible plan) and
+        ``notes``.
     """
     out = json.loads(
         _native.plan(

@@ -23,9 +23,18 @@ def test_plan_equals_the_cli_plan_for_the_same_seed(cli, tmp_path):
         assert got["run"][k] == want_run[k], k
     assert got["feasible"] == want_run["report"]["feasible"]
     assert got["verdict"].startswith("FEASIBLE" if got["feasible"] else "INFEASIBLE")
+    assert (got["outcome"] is None) == got["feasible"]
     conv = got["convergence"]
     assert conv[0]["iteration"] == 0 and conv[-1]["evaluations"] == 3000
     assert len(got["uav_costs"]) == len(conv) and len(got["uav_costs"][0]) == 5
+
+
+def test_an_infeasible_plan_says_whether_any_plan_exists():
+    # Twenty evaluations leave Case 1 infeasible; nothing rules every plan out there.
+    r = swarmplan.plan("paper-case1", evaluations=20)
+    assert not r["feasible"]
+    assert r["outcome"].startswith("none found: "), r["outcome"]
+    assert "widest way between the threats keeps" in r["outcome"]
 
 
 def test_plan_defaults_are_the_cli_defaults():
