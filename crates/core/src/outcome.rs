@@ -33,7 +33,11 @@ pub fn infeasible_outcome(world: &World, assessment: &Assessment) -> Option<Stri
         };
         return Some(format!("no plan exists: {first}{more}"));
     }
-    let ways: Vec<String> = ways(spec).into_iter().map(|w| w.sentence()).collect();
+    let mut ways: Vec<String> = ways(spec).into_iter().map(|w| w.sentence()).collect();
+    match unsearched_starts(spec) {
+        0 => {}
+        n => ways.push(format!("{n} further starts not searched")),
+    }
     let counts = count_by_kind(assessment);
     Some(format!(
         "none found: the search ended with {counts} left, but no cause rules every plan out; {}",
@@ -111,7 +115,8 @@ impl StartWays {
     }
 }
 
-/// The route layer's findings for every distinct start (and UAV size) of `spec`.
+/// The route layer's findings for the first [`crate::route::STARTS_SEARCHED`] distinct
+/// starts (and UAV sizes) of `spec`; [`unsearched_starts`] counts the rest.
 #[must_use]
 pub fn ways(spec: &ScenarioSpec) -> Vec<StartWays> {
     let g = spec.goal.position;
@@ -121,6 +126,9 @@ pub fn ways(spec: &ScenarioSpec) -> Vec<StartWays> {
         let start = DVec2::new(u.start[0], u.start[1]);
         if let Some((_, _, w)) = out.iter_mut().find(|(s, z, _)| *s == start && *z == u.size) {
             w.uavs.push(k);
+            continue;
+        }
+        if out.len() >= crate::route::STARTS_SEARCHED {
             continue;
         }
         let map = RouteMap::new(&spec.map, &spec.threats, u.size);
@@ -133,4 +141,18 @@ pub fn ways(spec: &ScenarioSpec) -> Vec<StartWays> {
         out.push((start, u.size, found));
     }
     out.into_iter().map(|(_, _, w)| w).collect()
+}
+
+/// How many distinct starts (and UAV sizes) of `spec` the route layer does not search
+/// ([`crate::route::STARTS_SEARCHED`]).
+#[must_use]
+pub fn unsearched_starts(spec: &ScenarioSpec) -> usize {
+    let mut seen: Vec<(DVec2, f64)> = Vec::new();
+    for u in &spec.uavs {
+        let key = (DVec2::new(u.start[0], u.start[1]), u.size);
+        if !seen.contains(&key) {
+            seen.push(key);
+        }
+    }
+    seen.len().saturating_sub(crate::route::STARTS_SEARCHED)
 }

@@ -28,6 +28,13 @@ pub fn check(scenario: &str) -> Result<()> {
     for w in swarmplan_core::outcome::ways(spec) {
         println!("{}", w.sentence());
     }
+    match swarmplan_core::outcome::unsearched_starts(spec) {
+        0 => {}
+        n => println!(
+            "{n} further starts not searched (the route layer searches the first {})",
+            swarmplan_core::route::STARTS_SEARCHED
+        ),
+    }
     let causes = swarmplan_core::world::unreachable::unreachable_in_world(&world);
     if causes.is_empty() {
         println!(

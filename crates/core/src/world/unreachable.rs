@@ -163,6 +163,8 @@ fn battery_short(
         let start = DVec2::new(u.start[0], u.start[1]);
         let length = match bounds.iter().find(|(s, z, _)| *s == start && *z == u.size) {
             Some(&(_, _, l)) => l,
+            // Past the starts the route layer searches, no bound is claimed.
+            None if bounds.len() >= crate::route::STARTS_SEARCHED => continue,
             None => {
                 let map = crate::route::RouteMap::new(&spec.map, &spec.threats, u.size);
                 let l = map.length_lower_bound(start, goal);
