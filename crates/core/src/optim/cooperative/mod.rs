@@ -28,10 +28,10 @@
 //!        pbest, gbest and the context follow feasibility-first improvements
 //! ```
 //!
-//! **Synchronous** (`synchronous`, the default since issue 12): a visit's particles, and
+//! **Synchronous** (`updates = "synchronous"`, the default since issue 12): a visit's particles, and
 //! each step's, are made against the gbest and context of the step's start and evaluated
 //! together on every core ([`Evaluator::evaluate_rows_blocks`]); their results are then
-//! taken in particle order. With `synchronous = false` each particle is evaluated as soon as
+//! taken in particle order. With `updates = "sequential"` each particle is evaluated as soon as
 //! it moves and gbest and the context follow it at once (the method as measured before).
 //! Only block b changes within a visit, so an evaluation never depends on that choice; the
 //! centre of a visit's perturbations and the gbest of a step do. docs/performance.md
@@ -43,7 +43,7 @@
 //! In a 20-UAV plan with two UAVs left in violation, a round of visits over every UAV spends
 //! nine tenths of its evaluations on paths that are already fine.
 //!
-//! **Transplants** (`transplant`). A visit of a UAV that holds a violation of an infeasible
+//! **Transplants** (`transplant = "perturbed"`). A visit of a UAV that holds a violation of an infeasible
 //! context makes its last particle another UAV's path: the block of a UAV without a
 //! violation of its own (drawn uniformly; any other UAV if every one has one), perturbed
 //! like the other particles. The fleet flies from one start, or nearby ones, to one goal,
@@ -53,7 +53,7 @@
 //! were feasible with transplants against 24 without; the perturbation, the spread, the
 //! nudges and, where free, the departure delays then separate the copy from its donor.
 //! Once a round has passed without progress the transplant is a *shifted copy*
-//! (`shifted_copies`, [`Evaluator::shifted_copy`]): the donor's path moved as a whole a few
+//! (`transplant = "shifted-when-stuck"`, the default; [`Evaluator::shifted_copy`]): the donor's path moved as a whole a few
 //! separation distances aside, so that it flies beside its donor rather than on top of it
 //! (held out on the outside instances: 168 of 320 runs feasible against 146).
 //!
@@ -99,6 +99,7 @@
 
 mod params;
 mod sub_swarm;
+pub mod switches;
 #[cfg(test)]
 mod tests;
 mod visit;
@@ -106,6 +107,7 @@ mod visit;
 use rand::Rng as _;
 
 pub use params::CoopParams;
+pub use switches::{Blocks, Comparison, Spread, Transplant, Updates};
 
 use super::{Evaluator, Optimizer};
 use crate::problem::Evaluation;
@@ -126,7 +128,7 @@ fn weighted_pick(weights: &[f64], rng: &mut Rng) -> usize {
 
 /// `a` better than `b` under `params`' comparison.
 fn better(params: CoopParams, a: &Evaluation, b: &Evaluation) -> bool {
-    if params.feasibility_first {
+    if params.compare == Comparison::FeasibilityFirst {
         a.better_feasibility_first(b)
     } else {
         a.better_than(b)
@@ -317,7 +319,7 @@ impl Cooperative {
     /// Particles evaluated together: the whole sub-swarm when synchronous (in parallel),
     /// else one at a time.
     fn chunk(&self) -> usize {
-        if self.params.synchronous {
+        if self.params.updates == Updates::Synchronous {
             self.params.population
         } else {
             1
@@ -362,7 +364,7 @@ impl Optimizer for Cooperative {
 
     fn init(&mut self, ev: &mut Evaluator<'_>, rng: &mut Rng) {
         self.dim = ev.dimension();
-        self.block = if self.params.decompose {
+        self.block = if self.params.blocks == Blocks::PerUav {
             ev.block_size()
         } else {
             self.dim
@@ -391,7 +393,7 @@ impl Optimizer for Cooperative {
         if self.spent > self.params.block_iterations {
             let improved = better(self.params, &self.context_eval, &self.visit_start);
             let s = &mut self.spread[self.current];
-            *s = if !self.params.adaptive_spread {
+            *s = if self.params.spread == Spread::Fixed {
                 *s
             } else if improved {
                 (*s * 2.0).min(0.5)

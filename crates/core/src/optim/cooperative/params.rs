@@ -3,6 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::switches::{self, Blocks, Comparison, Spread, Transplant, Updates};
 use super::Cooperative;
 use crate::optim::config::{check, ParamsError};
 use crate::optim::Optimizer;
@@ -38,15 +39,18 @@ pub struct CoopParams {
     /// Budget fraction from which restarts stop and the best plan so far is refined (0.85;
     /// 0.7 before the flown path of issue 15, measured in docs/results.md).
     pub refine_from: f64,
-    /// Compare candidates by Deb's feasibility rules (true) or by penalised cost alone
-    /// (false; an ablation, docs/results.md).
-    pub feasibility_first: bool,
-    /// Adapt each block's spread per visit (true) or keep `perturbation` (false; an
-    /// ablation).
-    pub adaptive_spread: bool,
-    /// Search one UAV at a time (true) or the whole plan as one block (false; an ablation:
-    /// a restarting PSO on the joint vector).
-    pub decompose: bool,
+    /// How candidates are compared: Deb's feasibility rules or penalised cost alone (an
+    /// ablation, docs/results.md). Old spelling `feasibility_first = true / false`.
+    #[serde(alias = "feasibility_first", deserialize_with = "switches::read")]
+    pub compare: Comparison,
+    /// Adapt each block's spread per visit, or keep `perturbation` (an ablation). Old
+    /// spelling `adaptive_spread`.
+    #[serde(alias = "adaptive_spread", deserialize_with = "switches::read")]
+    pub spread: Spread,
+    /// Search one UAV at a time, or the whole plan as one block (an ablation: a restarting
+    /// PSO on the joint vector). Old spelling `decompose`.
+    #[serde(alias = "decompose", deserialize_with = "switches::read")]
+    pub blocks: Blocks,
     /// Share of the visits of an infeasible context that go to a UAV holding a violation
     /// (its own, or its half of a separation), taken in turn; the other visits continue
     /// the cyclic order over every UAV, so a UAV whose move would repair another's violation
@@ -55,16 +59,28 @@ pub struct CoopParams {
     /// feasible at 1.0, 20 at 0.5, 12 at 0; level on the paper cases).
     pub focus: f64,
     /// Evaluate a sub-swarm's particles together, in parallel, against the gbest and
-    /// context of the step's start (true), or one after the other with gbest and the context
-    /// following each (false: the method as measured before issue 12). Either way a run is
-    /// the same for any thread count.
-    pub synchronous: bool,
+    /// context of the step's start, or one after the other with gbest and the context
+    /// following each (the method as measured before issue 12). Either way a run is the same
+    /// for any thread count. Old spelling `synchronous = true / false`.
+    #[serde(alias = "synchronous", deserialize_with = "switches::read")]
+    pub updates: Updates,
     /// In a visit of a block that holds a violation of an infeasible context, make one
     /// particle a *transplant*: another block's path (one without a violation of its own,
     /// drawn at random, if any), perturbed like the others. UAVs of one fleet fly from
     /// nearby starts to one goal, so a way round the threats that one UAV has found is
     /// usually open to another whose own sector search is stuck on the wrong side.
-    pub transplant: bool,
+    ///
+    /// With [`Transplant::ShiftedWhenStuck`], once a round has passed without progress (an
+    /// infeasible context whose violation did not drop by `restart_drop`), the transplant is
+    /// a *shifted copy* ([`crate::optim::Evaluator::shifted_copy`]): the donor's path moved
+    /// as a whole, in a planning problem by 1.5 to 3 separation distances sideways in a
+    /// random direction and a Gaussian of one in height. Under common arrival the copy and
+    /// its donor are at the same share of their routes at every instant, so they fly side
+    /// by side about that far apart, where a perturbed copy flies on top of its donor.
+    /// Measured in docs/results.md ("Shifted copies"; there `shifted_copies = false` is
+    /// `"perturbed"`).
+    #[serde(deserialize_with = "switches::read")]
+    pub transplant: Transplant,
     /// Particles of a visit of a violating block (infeasible context) that are the
     /// problem's local move of the context's block ([`crate::optim::Evaluator::nudge`]; in a planning
     /// problem one free waypoint moved by a few separation distances), taken from the
@@ -72,15 +88,6 @@ pub struct CoopParams {
     /// is no transplant; 0: none, and no random draw for them). Measured in
     /// docs/results.md ("Nudges").
     pub nudges: usize,
-    /// Once a round has passed without progress (an infeasible context whose violation did
-    /// not drop by `restart_drop`), make the transplant a *shifted copy*
-    /// ([`crate::optim::Evaluator::shifted_copy`]): the donor's path moved as a whole, in a planning
-    /// problem by 1.5 to 3 separation distances sideways in a random direction and a
-    /// Gaussian of one in height. Under common arrival the copy and its donor are at the
-    /// same share of their routes at every instant, so they fly side by side about that
-    /// far apart, where a perturbed copy flies on top of its donor. Measured in
-    /// docs/results.md ("Shifted copies").
-    pub shifted_copies: bool,
     /// Share of the nudges aimed at where the block's violations are
     /// ([`crate::optim::Evaluator::hot_spots`]: in a planning problem the free waypoints next to the
     /// UAV's violations, and its departure delay when delays are free, drawn in proportion
@@ -104,14 +111,13 @@ impl CoopParams {
         restart_after: 3,
         restart_drop: 0.05,
         refine_from: 0.85,
-        feasibility_first: true,
-        adaptive_spread: true,
-        decompose: true,
+        compare: Comparison::FeasibilityFirst,
+        spread: Spread::Adaptive,
+        blocks: Blocks::PerUav,
         focus: 1.0,
-        synchronous: true,
-        transplant: true,
+        updates: Updates::Synchronous,
+        transplant: Transplant::ShiftedWhenStuck,
         nudges: 4,
-        shifted_copies: true,
         aimed_nudges: 1.0,
     };
 

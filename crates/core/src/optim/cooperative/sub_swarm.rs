@@ -2,7 +2,7 @@
 //! here shares ([`crate::optim::swarm::move_coordinate`]), and the evaluation of its
 //! particles in the context.
 
-use super::Cooperative;
+use super::{Comparison, Cooperative};
 use crate::optim::swarm::{move_coordinate, VelocityRule};
 use crate::optim::Evaluator;
 use crate::rng::Rng;
@@ -43,7 +43,8 @@ impl Cooperative {
             }
             // A moved particle counts only if it beats its pbest, which (feasibility first)
             // it cannot once its violation passes the pbest's: such evaluations stop there.
-            self.evaluate_particles(b, from, to, self.params.feasibility_first, ev);
+            let bounded = self.params.compare == Comparison::FeasibilityFirst;
+            self.evaluate_particles(b, from, to, bounded, ev);
             let got = self.evals.len();
             for k in 0..got {
                 self.take_particle(b, from + k, k, false);

@@ -300,7 +300,7 @@ impl BlockProblem for NarrowGap {
 
 #[test]
 fn a_violating_block_finds_the_way_another_block_knows_by_transplant() {
-    let run = |transplant: bool, seed: u64| {
+    let run = |transplant: Transplant, seed: u64| {
         let mut opt = Cooperative::new(CoopParams {
             transplant,
             ..CoopParams::DEFAULT
@@ -317,10 +317,13 @@ fn a_violating_block_finds_the_way_another_block_knows_by_transplant() {
     };
     for seed in 1..=5 {
         assert!(
-            run(true, seed),
+            run(Transplant::ShiftedWhenStuck, seed),
             "seed {seed}: transplant did not cross the gap"
         );
-        assert!(!run(false, seed), "seed {seed}: crossed without transplant");
+        assert!(
+            !run(Transplant::Off, seed),
+            "seed {seed}: crossed without transplant"
+        );
     }
 }
 
@@ -518,10 +521,10 @@ fn a_problem_without_hot_spots_spends_no_evaluation_on_them() {
 
 #[test]
 fn shifted_copies_come_after_a_round_without_progress_for_the_violating_block() {
-    let asked = |shifted_copies: bool, evaluations: u64| {
+    let asked = |transplant: Transplant, evaluations: u64| {
         let p = CountsMoves::new();
         let mut opt = Cooperative::new(CoopParams {
-            shifted_copies,
+            transplant,
             ..CoopParams::DEFAULT
         });
         let _ = solve(
@@ -533,10 +536,10 @@ fn shifted_copies_come_after_a_round_without_progress_for_the_violating_block() 
         );
         p.copies.into_inner().expect("not poisoned")
     };
-    assert!(asked(false, 6000).is_empty());
+    assert!(asked(Transplant::Perturbed, 6000).is_empty());
     // A round visits the four blocks, 100 evaluations a visit: none has ended yet.
-    assert!(asked(true, 300).is_empty());
-    let on = asked(true, 6000);
+    assert!(asked(Transplant::ShiftedWhenStuck, 300).is_empty());
+    let on = asked(Transplant::ShiftedWhenStuck, 6000);
     assert!(!on.is_empty());
     assert!(
         on.iter().all(|&(b, d)| b == 3 && d < 3),
@@ -604,9 +607,9 @@ impl BlockProblem for Unpenalised {
 #[test]
 fn without_feasibility_first_the_search_follows_the_cost_alone() {
     let p = Unpenalised(vec![Bound::new(-5.0, 5.0); 6]);
-    let run = |feasibility_first: bool| {
+    let run = |compare: Comparison| {
         let mut opt = Cooperative::new(CoopParams {
-            feasibility_first,
+            compare,
             ..CoopParams::DEFAULT
         });
         solve(
@@ -618,8 +621,8 @@ fn without_feasibility_first_the_search_follows_the_cost_alone() {
         )
         .best
     };
-    assert!(run(true).feasible());
-    let blind = run(false);
+    assert!(run(Comparison::FeasibilityFirst).feasible());
+    let blind = run(Comparison::PenalisedCost);
     assert!(!blind.feasible() && blind.cost < 0.1, "{blind:?}");
 }
 
@@ -639,11 +642,11 @@ fn each_ablation_switch_changes_the_search_and_still_runs() {
     let base = run(CoopParams::DEFAULT);
     for off in [
         CoopParams {
-            adaptive_spread: false,
+            spread: Spread::Fixed,
             ..CoopParams::DEFAULT
         },
         CoopParams {
-            decompose: false,
+            blocks: Blocks::WholePlan,
             ..CoopParams::DEFAULT
         },
     ] {
@@ -652,4 +655,65 @@ fn each_ablation_switch_changes_the_search_and_still_runs() {
         assert!(out.best.cost.is_finite(), "{off:?}");
         assert_ne!(out.best_x, base.best_x, "{off:?} searched the same way");
     }
+}
+
+#[test]
+fn switches_read_their_names_and_the_old_booleans() {
+    let read = |text: &str| toml::from_str::<CoopParams>(text);
+    let named = read(
+        "compare = \"penalised-cost\"\nspread = \"fixed\"\nblocks = \"whole-plan\"\n\
+         updates = \"sequential\"\ntransplant = \"perturbed\"",
+    )
+    .expect("names");
+    assert_eq!(
+        (
+            named.compare,
+            named.spread,
+            named.blocks,
+            named.updates,
+            named.transplant
+        ),
+        (
+            Comparison::PenalisedCost,
+            Spread::Fixed,
+            Blocks::WholePlan,
+            Updates::Sequential,
+            Transplant::Perturbed
+        )
+    );
+    let old = read(
+        "feasibility_first = false\nadaptive_spread = false\ndecompose = false\n\
+         synchronous = false\ntransplant = false",
+    )
+    .expect("old booleans");
+    assert_eq!(
+        (
+            old.compare,
+            old.spread,
+            old.blocks,
+            old.updates,
+            old.transplant
+        ),
+        (
+            Comparison::PenalisedCost,
+            Spread::Fixed,
+            Blocks::WholePlan,
+            Updates::Sequential,
+            Transplant::Off
+        )
+    );
+    assert_eq!(read("").expect("empty"), CoopParams::DEFAULT);
+    let bad = read("spread = \"wide\"")
+        .expect_err("an unknown name")
+        .to_string();
+    assert!(
+        bad.contains("\"adaptive\", \"fixed\"") && bad.contains("wide"),
+        "{bad}"
+    );
+    let both = read("spread = \"fixed\"\nadaptive_spread = true").expect_err("both spellings");
+    assert!(both.to_string().contains("duplicate"), "{both}");
+    // Records write the names.
+    let json = serde_json::to_value(CoopParams::DEFAULT).expect("serialises");
+    assert_eq!(json["transplant"], "shifted-when-stuck");
+    assert_eq!(json["compare"], "feasibility-first");
 }

@@ -6,7 +6,7 @@
 use rand::Rng as _;
 use rand_distr::{Distribution, Normal};
 
-use super::{weighted_pick, Cooperative};
+use super::{weighted_pick, Blocks, Cooperative, Transplant};
 use crate::optim::swarm::into_bound;
 use crate::optim::Evaluator;
 use crate::problem::{Bound, Evaluation};
@@ -53,7 +53,8 @@ impl Cooperative {
             && ev.hot_spots(&self.context, b, &mut self.spots).is_some()
             && self.spots.iter().any(|&w| w > 0.0);
         // After a round without progress the transplant is a shifted copy.
-        let shift = self.params.shifted_copies && self.stale_rounds >= 1;
+        let shift =
+            self.params.transplant == Transplant::ShiftedWhenStuck && self.stale_rounds >= 1;
         let mut from = 1;
         while from < n {
             let to = (from + self.chunk()).min(n);
@@ -111,7 +112,7 @@ impl Cooperative {
 
     /// Whether block `b` holds a violation of an infeasible context (and blocks are UAVs).
     pub(super) fn violating(&self, b: usize) -> bool {
-        self.params.decompose
+        self.params.blocks == Blocks::PerUav
             && !self.context_eval.feasible()
             && self.context_shares.get(b).is_some_and(|&v| v > 0.0)
     }
@@ -122,7 +123,7 @@ impl Cooperative {
     /// without a violation is preferred, drawn uniformly; else any other block.
     pub(super) fn transplant_donor(&self, b: usize, fresh: usize, rng: &mut Rng) -> Option<usize> {
         let blocks = self.blocks();
-        let wanted = self.params.transplant
+        let wanted = self.params.transplant.on()
             && blocks > 1
             && fresh + 1 < self.params.population
             && self.violating(b);
