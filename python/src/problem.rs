@@ -17,7 +17,7 @@ use swarmplan_core::planning::PlanningProblem;
 use swarmplan_core::problem::{BlockProblem, Bound as VarBound, Problem as _};
 use swarmplan_core::rng::rng_from_seed;
 use swarmplan_core::world::World;
-use swarmplan_io::artifact::AssessmentReport;
+use swarmplan_io::artifact::AssessmentRecord;
 use swarmplan_io::plan_file::{plan_file, read_plan, PlanFileError, Provenance};
 
 use crate::errors::{bad, message, to_py, with_advice};
@@ -285,14 +285,14 @@ impl Problem {
     fn assess(&self, x: PyReadonlyArray1<'_, f64>) -> PyResult<String> {
         let x = self.projected(x.as_slice()?, None)?;
         let plan = self.planning().decode(&x);
-        Self::json(&AssessmentReport::of(&assess(&self.world, &plan, true)))
+        Self::json(&AssessmentRecord::of(&assess(&self.world, &plan)))
     }
 
     /// `evaluate --json` of a plan file.
     #[pyo3(signature = (path, allow_other_terrain=false))]
     fn evaluate_plan(&self, path: PathBuf, allow_other_terrain: bool) -> PyResult<String> {
         let plan = self.read_plan(&path, allow_other_terrain)?;
-        Self::json(&AssessmentReport::of(&assess(&self.world, &plan, true)))
+        Self::json(&AssessmentRecord::of(&assess(&self.world, &plan)))
     }
 
     /// Where a UAV `agl` metres above ground (default: the top of the altitude band) links

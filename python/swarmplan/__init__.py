@@ -315,8 +315,8 @@ def plan(
     iterations for the paper's methods); the default seed is the scenario's.
 
     Returns:
-        A dict with ``run`` (``run.json``: method, seed, budget, evaluations and ``report``,
-        the per-UAV report and the violations), ``plan`` (``plan.json``), ``feasible``,
+        A dict with ``run`` (``run.json``: method, seed, budget, evaluations and ``assessment``,
+        the per-UAV summaries and the violations), ``plan`` (``plan.json``), ``feasible``,
         ``violations``, ``convergence`` (a list of dicts per iteration; past 65,536
         iterations every s-th, each dict naming its iteration), ``uav_costs``
         (per row of ``convergence`` and UAV), ``verdict`` (the verdict line ``plan``
@@ -341,8 +341,8 @@ def plan(
         )
     )
     _warn(out["notes"])
-    out["feasible"] = out["run"]["report"]["feasible"]
-    out["violations"] = out["run"]["report"]["violations"]
+    out["feasible"] = out["run"]["assessment"]["feasible"]
+    out["violations"] = out["run"]["assessment"]["violations"]
     return out
 
 

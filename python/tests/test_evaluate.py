@@ -96,7 +96,7 @@ def test_encode_plan_round_trips_the_cli_plan(cli, tmp_path):
             "--no-figures", "--out", str(out))
     p = swarmplan.Problem("tiny")
     x = p.encode_plan(out / "plan.json")
-    want = json.loads((out / "run.json").read_text())["report"]["cost"]["total"]
+    want = json.loads((out / "run.json").read_text())["assessment"]["cost"]["total"]
     assert math.isclose(p.evaluate(x)[0], want, rel_tol=1e-9)
 
 

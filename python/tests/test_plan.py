@@ -18,10 +18,10 @@ def test_plan_equals_the_cli_plan_for_the_same_seed(cli, tmp_path):
     want_run = json.loads((out / "run.json").read_text())
     got = swarmplan.plan("paper-case1", seed=11, evaluations=3000)
     assert got["plan"] == want_plan
-    assert got["run"]["report"] == want_run["report"]
+    assert got["run"]["assessment"] == want_run["assessment"]
     for k in ("method", "seed", "budget", "evaluations", "iterations", "termination"):
         assert got["run"][k] == want_run[k], k
-    assert got["feasible"] == want_run["report"]["feasible"]
+    assert got["feasible"] == want_run["assessment"]["feasible"]
     assert got["verdict"].startswith("FEASIBLE" if got["feasible"] else "INFEASIBLE")
     assert (got["outcome"] is None) == got["feasible"]
     conv = got["convergence"]

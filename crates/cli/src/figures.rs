@@ -108,7 +108,7 @@ pub fn bench_figures(dir: &Path, records: &[RunRecord]) -> Result<Vec<PathBuf>> 
 /// seed, and INFEASIBLE when the plan is.
 #[must_use]
 pub fn plan_title(scenario: &str, run: &RunArtifact) -> String {
-    let verdict = if run.report.feasible {
+    let verdict = if run.assessment.feasible {
         ""
     } else {
         " - INFEASIBLE"

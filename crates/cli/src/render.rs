@@ -220,7 +220,7 @@ mod tests {
             delays: Vec::new(),
             uavs: vec![path(0), path(1)],
         };
-        let a = assess(&world, &plan, true);
+        let a = assess(&world, &plan);
         (world, a)
     }
 
@@ -335,7 +335,7 @@ mod tests {
                 },
             ],
         };
-        let text = assessment(&world, &assess(&world, &plan, true));
+        let text = assessment(&world, &assess(&world, &plan));
         assert!(text.contains("separation"), "{text}");
         assert!(
             text.contains("separation conflicts: 1 of the 2 where UAVs leave the take-off zone")

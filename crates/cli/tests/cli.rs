@@ -102,11 +102,11 @@ fn plan_writes_files_that_evaluate_reads_back_with_the_same_cost() {
         .success();
     let evaluated = json(&out.get_output().stdout);
     let (a, b) = (
-        planned["report"]["cost"]["total"].as_f64().unwrap(),
+        planned["assessment"]["cost"]["total"].as_f64().unwrap(),
         evaluated["cost"]["total"].as_f64().unwrap(),
     );
     assert!((a - b).abs() <= 1e-9 * a.abs().max(1.0), "{a} vs {b}");
-    assert_eq!(planned["report"]["feasible"], evaluated["feasible"]);
+    assert_eq!(planned["assessment"]["feasible"], evaluated["feasible"]);
     assert!(evaluated["violations"].is_array());
     assert!(evaluated["cost"]["terms"]["length"].as_f64().unwrap() > 0.0);
 }
@@ -578,7 +578,7 @@ fn anytime_stops_at_the_first_feasible_plan_or_at_the_time_limit() {
         .success();
     let a = json(&out.get_output().stdout);
     assert_eq!(a["termination"], "feasible");
-    assert_eq!(a["report"]["feasible"], true);
+    assert_eq!(a["assessment"]["feasible"], true);
     assert!(a["evaluations"].as_u64().unwrap() < 38_700);
     let stderr = String::from_utf8_lossy(&out.get_output().stderr).to_string();
     assert!(stderr.contains("first feasible plan after"), "{stderr}");

@@ -427,5 +427,5 @@ impl ViolationSink {
 /// Every violation of `plan` in `world`.
 #[must_use]
 pub fn check(world: &World, plan: &Plan) -> Vec<Violation> {
-    assess(world, plan, true).violations.unwrap_or_default()
+    assess(world, plan).violations.unwrap_or_default()
 }

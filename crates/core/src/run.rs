@@ -156,7 +156,7 @@ fn finish(
     seconds: f64,
 ) -> RunResult {
     let plan = problem.decode(&outcome.best_x);
-    let assessment = crate::cost::assess(world, &plan, true);
+    let assessment = crate::cost::assess(world, &plan);
     RunResult {
         method: req.method,
         seed: req.seed,

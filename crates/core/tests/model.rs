@@ -4,9 +4,9 @@
 #![allow(clippy::unwrap_used)] // tests fail loudly by design
 
 use glam::DVec3;
-use swarmplan_core::cost::assess;
 use swarmplan_core::cost::comm::{contact_at, Contact};
 use swarmplan_core::cost::TermId;
+use swarmplan_core::cost::{assess, assess_as_searched};
 use swarmplan_core::feasibility::{check, ViolationKind};
 use swarmplan_core::plan::{Path, Plan};
 use swarmplan_core::problem::BlockProblem;
@@ -72,7 +72,7 @@ fn straight_path_length_is_the_distance() {
         w.goal_at(swarmplan_core::world::DEPARTURE),
         5,
     );
-    let a = assess(&w, &plan, true);
+    let a = assess(&w, &plan);
     let want = (800.0f64 * 800.0 * 2.0).sqrt();
     assert!((a.per_uav[0].raw[TermId::Length] - want).abs() < 1e-9);
     assert!((a.per_uav[0].length_m - want).abs() < 1e-9);
@@ -98,7 +98,7 @@ fn a_segment_clear_of_a_cylinder_costs_nothing_and_one_through_it_violates() {
         w.goal_at(swarmplan_core::world::DEPARTURE),
         5,
     );
-    let a = assess(&w, &plan, true);
+    let a = assess(&w, &plan);
     assert_eq!(a.per_uav[0].raw[TermId::Threat], 0.0);
     assert!(!kinds(&w, &plan).contains(&ViolationKind::Threat));
 
@@ -113,7 +113,7 @@ fn a_segment_clear_of_a_cylinder_costs_nothing_and_one_through_it_violates() {
         .expect("a threat violation");
     assert!((hit.amount - 51.0).abs() < 1e-9, "intrusion {}", hit.amount);
     assert!(hit.position.is_some() && hit.time.is_some());
-    assert!(assess(&w, &plan, false).total > 1000.0);
+    assert!(assess_as_searched(&w, &plan).total > 1000.0);
 }
 
 #[test]
@@ -232,7 +232,7 @@ fn speeds_out_of_range_count_in_safety_and_violate() {
         w.goal_at(swarmplan_core::world::DEPARTURE),
         3,
     );
-    let a = assess(&w, &plan, true);
+    let a = assess(&w, &plan);
     // 4 segments too fast + 1 payload indicator.
     assert_eq!(a.per_uav[0].raw[TermId::Safety], 5.0);
     let k = kinds(&w, &plan);
@@ -252,7 +252,7 @@ fn a_small_battery_violates_energy() {
     let v = check(&w, &plan);
     assert!(v.iter().any(|v| v.kind == ViolationKind::Energy), "{v:?}");
     // The physical energy is P(15 m/s) L / 15 with the payload, at least 9 J/m.
-    let a = assess(&w, &plan, true);
+    let a = assess(&w, &plan);
     assert!(a.per_uav[0].energy_j > 9.0 * a.per_uav[0].length_m);
 }
 
@@ -363,7 +363,7 @@ fn flying_out_of_range_costs_and_violates_outage() {
         w.goal_at(swarmplan_core::world::DEPARTURE),
         3,
     );
-    let a = assess(&w, &plan, true);
+    let a = assess(&w, &plan);
     // Out of both 300 m disks for the middle of the 800 m trip (about 200 m, 13 s at 15 m/s).
     assert!(a.per_uav[0].outage_s >= 10.0, "{}", a.per_uav[0].outage_s);
     assert!(a.per_uav[0].raw[TermId::Communication] > 0.0);
@@ -412,11 +412,11 @@ fn two_forty_degree_turns_three_metres_apart_break_the_turning_radius() {
     let mut paper = s.clone();
     paper.planning.profile = swarmplan_core::feasibility::FeasibilityProfile::Paper;
     let w = World::new(paper, flat()).unwrap();
-    assert!(assess(&w, &plan, true).feasible(), "{:?}", check(&w, &plan));
+    assert!(assess(&w, &plan).feasible(), "{:?}", check(&w, &plan));
     // Spaced 60 m apart the turns fit.
     let (s, plan) = bent([500.0, 100.0], &[40.0, 40.0], &[60.0, 700.0]);
     let w = World::new(s, flat()).unwrap();
-    assert!(assess(&w, &plan, true).feasible(), "{:?}", check(&w, &plan));
+    assert!(assess(&w, &plan).feasible(), "{:?}", check(&w, &plan));
 }
 
 #[test]
@@ -455,7 +455,7 @@ fn a_threat_that_only_the_cut_corner_enters_is_caught_on_the_flown_path() {
         u.turn_radius = 0.0;
     }
     let w = World::new(s, flat()).unwrap();
-    assert!(assess(&w, &plan, true).feasible(), "{:?}", check(&w, &plan));
+    assert!(assess(&w, &plan).feasible(), "{:?}", check(&w, &plan));
 }
 
 #[test]
@@ -463,7 +463,7 @@ fn the_flown_path_is_shorter_than_the_waypoints_by_the_cut_corners() {
     // One 40 deg turn: the arc replaces 2 t of corner by R theta.
     let (s, plan) = bent([500.0, 100.0], &[40.0], &[600.0]);
     let w = World::new(s, flat()).unwrap();
-    let a = assess(&w, &plan, true);
+    let a = assess(&w, &plan);
     let theta = 40f64.to_radians();
     let t = 50.0 * (0.5 * theta).tan();
     let want = 400.0 + 600.0 - 2.0 * t + 50.0 * theta;
@@ -594,16 +594,15 @@ fn a_free_pace_is_one_more_variable_per_uav_and_the_plan_flies_it() {
             paces.push(plan.pace);
             // The evaluation is that of the decoded plan, pace included.
             let e = b.evaluate(&x);
-            let fresh = assess(&free, &plan, false);
+            let fresh = assess_as_searched(&free, &plan);
             assert_eq!(e.cost.to_bits(), fresh.total.to_bits());
             // Paced T is the pace-1 T over the pace (the speeds stay inside [5, 25] here).
-            let at_one = assess(
+            let at_one = assess_as_searched(
                 &free,
                 &Plan {
                     pace: 1.0,
                     ..plan.clone()
                 },
-                false,
             );
             let (t, t1) = (fresh.per_uav[0].arrival_s, at_one.per_uav[0].arrival_s);
             assert!(
@@ -746,7 +745,7 @@ fn hovering_before_departure_costs_hover_power() {
             delays: vec![delay],
             ..Plan::default()
         };
-        assess(&w, &plan, true).per_uav[0].clone()
+        assess(&w, &plan).per_uav[0].clone()
     };
     let (now, later) = (at(0.0), at(0.25));
     let flight = 800.0 * 2f64.sqrt() / 15.0;
@@ -804,7 +803,7 @@ fn out_of_range_delays_are_timed_as_the_nearest_admissible_share() {
             p.arrival.is_finite() && p.depart.is_finite() && p.depart < p.arrival,
             "{d}"
         );
-        let a = assess(&w, &plan, true);
+        let a = assess(&w, &plan);
         assert!(a.total.is_finite(), "{d}: {}", a.total);
     }
 }
@@ -845,8 +844,8 @@ fn the_search_and_the_report_agree_on_terrain_clearance() {
             delays: Vec::new(),
             uavs: vec![path(&points)],
         };
-        let report = assess(&w, &plan, true);
-        let search = assess(&w, &plan, false);
+        let report = assess(&w, &plan);
+        let search = assess_as_searched(&w, &plan);
         assert_eq!(
             report.violation.to_bits(),
             search.violation.to_bits(),
@@ -1200,7 +1199,7 @@ fn a_peak_corner_is_climbed_as_flown_not_as_its_waypoint() {
     assert!((climbed - 107.735).abs() < 1e-3, "{climbed}");
     let length =
         2.0 * (200.0 / 30f64.to_radians().cos() - t) + 4.0 * 2.0 * r * 7.5f64.to_radians().sin();
-    let a = assess(&w, &plan, true);
+    let a = assess(&w, &plan);
     let u = &a.per_uav[0];
     assert!(
         (u.length_m - length).abs() < 1e-9,

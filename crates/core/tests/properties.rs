@@ -100,7 +100,7 @@ proptest! {
         let w = world();
         let enc = build(kind, w);
         let x = into_bounds(&u, enc.as_ref());
-        let a = assess(w, &enc.decode(&x), true);
+        let a = assess(w, &enc.decode(&x));
         for r in &a.per_uav {
             for v in r.raw.iter().chain(r.weighted.iter()).map(|(_, v)| v) {
                 prop_assert!(v.is_finite() && v >= 0.0, "term {}", v);

@@ -77,7 +77,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             world.goal_at(swarmplan_core::world::DEPARTURE),
             10,
         );
-        let a = assess(&world, &straight, true);
+        let a = assess(&world, &straight);
         println!(
             "straight plan: feasible {}, violations [{}]",
             a.feasible(),
@@ -111,7 +111,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             println!("    arrives at {t_end:.0} s; passes {}", at.join(", "));
             fleet.uavs.push(r.plan.uavs[0].clone());
         }
-        let a = assess(&world, &fleet, true);
+        let a = assess(&world, &fleet);
         let outage: Vec<String> = a
             .per_uav
             .iter()

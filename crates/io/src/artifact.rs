@@ -114,7 +114,7 @@ pub struct CostSummary {
 
 /// The assessment of a plan as `evaluate --json` prints it and `run.json` stores it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct AssessmentReport {
+pub struct AssessmentRecord {
     /// True when no hard constraint is violated (`violation` is 0).
     pub feasible: bool,
     /// The feasibility profile: which violations decide `feasible`.
@@ -131,7 +131,7 @@ pub struct AssessmentReport {
     pub violations: Vec<Violation>,
 }
 
-impl AssessmentReport {
+impl AssessmentRecord {
     /// The report of an assessment (its violation list, if it has one).
     #[must_use]
     pub fn of(a: &Assessment) -> Self {
@@ -217,8 +217,10 @@ pub struct RunArtifact {
     /// Wall time of the optimisation, seconds.
     #[serde(with = "json_f64")]
     pub seconds: f64,
-    /// The assessment of the plan.
-    pub report: AssessmentReport,
+    /// The assessment of the plan (key `report` in folders written before issue 44, still
+    /// read).
+    #[serde(alias = "report")]
+    pub assessment: AssessmentRecord,
     /// The other files written next to `run.json`.
     pub files: ArtifactFiles,
     /// Every attempt of `plan --attempts K` (K > 1), in order; the plan is the one of
@@ -254,7 +256,7 @@ impl RunArtifact {
             termination: result.outcome.termination,
             restarted_after: result.outcome.restarted_after,
             seconds: result.seconds,
-            report: AssessmentReport::of(&result.assessment),
+            assessment: AssessmentRecord::of(&result.assessment),
             files,
             attempts: Vec::new(),
         }

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use serde_json::Value;
-use swarmplan_core::cost::assess;
+use swarmplan_core::cost::assess_as_searched;
 use swarmplan_core::method::Method;
 use swarmplan_core::optim::{Budget, IterationRecord, OptimizerParams};
 use swarmplan_core::plan::Plan;
@@ -392,7 +392,7 @@ fn kml_and_csv_state_their_altitude_reference() {
 fn export_then_reimport_gives_the_same_cost() {
     let world = tiny();
     let plan = planned(&world);
-    let before = assess(&world, &plan, false);
+    let before = assess_as_searched(&world, &plan);
     let dir = tempfile::tempdir().unwrap();
     for format in [ExportFormat::Csv, ExportFormat::GeoJson] {
         let files = export_plan(&world, &plan, &frame(), format, dir.path()).unwrap();
@@ -404,7 +404,7 @@ fn export_then_reimport_gives_the_same_cost() {
             .flat_map(|(a, b)| a.waypoints.iter().zip(&b.waypoints))
             .map(|(a, b)| a.distance(*b))
             .fold(0.0, f64::max);
-        let after = assess(&world, &again, false);
+        let after = assess_as_searched(&world, &again);
         println!(
             "{format}: worst waypoint error {worst:.2e} m, cost {} -> {} (diff {:.2e})",
             before.total,
@@ -437,14 +437,13 @@ fn a_paced_plan_is_reimported_at_its_pace_and_a_foreign_pace_is_refused() {
     let world = build_world(&loaded, None).unwrap();
     let mut plan = planned(&world);
     plan.pace = 1.3;
-    let before = assess(&world, &plan, false);
-    let at_unit_pace = assess(
+    let before = assess_as_searched(&world, &plan);
+    let at_unit_pace = assess_as_searched(
         &world,
         &Plan {
             pace: 1.0,
             ..plan.clone()
         },
-        false,
     );
     assert!(
         (at_unit_pace.total - before.total).abs() > 1e-3,
@@ -455,7 +454,7 @@ fn a_paced_plan_is_reimported_at_its_pace_and_a_foreign_pace_is_refused() {
         let files = export_plan(&world, &plan, &frame(), format, dir.path()).unwrap();
         let again = read_exported_plan(&files[0], &world, &frame()).unwrap();
         assert_eq!(again.pace.to_bits(), plan.pace.to_bits(), "{format}");
-        let after = assess(&world, &again, false);
+        let after = assess_as_searched(&world, &again);
         assert!((after.total - before.total).abs() < 1e-6, "{format}");
         // The unpaced scenario (pace fixed at 1) refuses the file, naming the pace.
         let e = read_exported_plan(&files[0], &tiny(), &frame())
@@ -563,7 +562,7 @@ fn the_exported_trajectory_is_the_assessed_flown_path() {
         "tiny is strict: plans are assessed as flown"
     );
     let plan = planned(&world);
-    let report = assess(&world, &plan, false);
+    let report = assess_as_searched(&world, &plan);
     let waypoints = TimedPlan::new(&world, &plan);
     let mut flown = TimedPlan::default();
     flown.fill_flown(&world, &waypoints);
@@ -681,14 +680,13 @@ fn a_delayed_plan_hovers_in_every_export_and_is_reimported_with_its_delays() {
     let world = build_world(&loaded, None).unwrap();
     let mut plan = planned(&world);
     plan.delays = vec![0.0, 0.25];
-    let before = assess(&world, &plan, false);
-    let undelayed = assess(
+    let before = assess_as_searched(&world, &plan);
+    let undelayed = assess_as_searched(
         &world,
         &Plan {
             delays: Vec::new(),
             ..plan.clone()
         },
-        false,
     );
     assert!(
         (undelayed.total - before.total).abs() > 1e-3,
@@ -725,7 +723,7 @@ fn a_delayed_plan_hovers_in_every_export_and_is_reimported_with_its_delays() {
         let again = read_exported_plan(&files[0], &world, &frame()).unwrap();
         let bits = |p: &Plan| p.delays.iter().map(|d| d.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&again), bits(&plan), "{format}");
-        let after = assess(&world, &again, false);
+        let after = assess_as_searched(&world, &again);
         assert!((after.total - before.total).abs() < 1e-6, "{format}");
         // A scenario without delays refuses the file, naming the UAV and the limit.
         let e = read_exported_plan(&files[0], &tiny(), &frame())

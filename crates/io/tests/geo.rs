@@ -10,7 +10,7 @@
 use std::path::Path;
 
 use glam::DVec3;
-use swarmplan_core::cost::assess;
+use swarmplan_core::cost::assess_as_searched;
 use swarmplan_core::plan::Plan;
 use swarmplan_io::dem::{read_terrain, DemOptions};
 use swarmplan_io::export::{export_plan, ExportFormat};
@@ -607,7 +607,10 @@ fn scenario_new_places_start_and_goal_and_reads_back() {
     let out = dir.path().join("out");
     let files = export_plan(&world, &plan, &frame, ExportFormat::Csv, &out).unwrap();
     let again = read_exported_plan(&files[0], &world, &frame).unwrap();
-    let (a, b) = (assess(&world, &plan, false), assess(&world, &again, false));
+    let (a, b) = (
+        assess_as_searched(&world, &plan),
+        assess_as_searched(&world, &again),
+    );
     assert!((a.total - b.total).abs() < 1e-6, "{} {}", a.total, b.total);
 }
 

@@ -15,7 +15,7 @@ use std::sync::OnceLock;
 use swarmplan_core::problem::BlockProblem;
 
 use proptest::prelude::*;
-use swarmplan_core::cost::{assess_into, Scratch, UavReport};
+use swarmplan_core::cost::{assess_into, Scratch, UavAssessment};
 use swarmplan_core::encoding::{EncodingKind, InitKind};
 use swarmplan_core::feasibility::{Violation, ViolationSink};
 use swarmplan_core::planning::PlanningProblem;
@@ -57,7 +57,7 @@ fn worlds() -> &'static [World] {
     })
 }
 
-type Outcome = (u64, u64, Vec<UavReport>, Vec<Violation>);
+type Outcome = (u64, u64, Vec<UavAssessment>, Vec<Violation>);
 
 /// Assesses `x` on `scratch` with the violation list collected.
 fn outcome(problem: &PlanningProblem<'_>, x: &[f64], scratch: &mut Scratch) -> Outcome {
@@ -76,7 +76,7 @@ fn outcome(problem: &PlanningProblem<'_>, x: &[f64], scratch: &mut Scratch) -> O
 /// What an optimizer's summing assessment gives: total, measure, soft measure, reports and
 /// each UAV's share of the measure, as bits. Unlike [`outcome`] this takes the memo of
 /// each UAV's own terms (a collecting sink never does).
-type Summed = (u64, u64, u64, Vec<UavReport>, Vec<u64>);
+type Summed = (u64, u64, u64, Vec<UavAssessment>, Vec<u64>);
 
 fn summed(problem: &PlanningProblem<'_>, x: &[f64], scratch: &mut Scratch) -> Summed {
     let world = problem.world();

@@ -4,7 +4,7 @@
 
 #![allow(clippy::unwrap_used)] // tests fail loudly by design
 
-use swarmplan_core::cost::assess;
+use swarmplan_core::cost::{assess, assess_as_searched};
 use swarmplan_core::feasibility::{FeasibilityProfile, ViolationKind};
 use swarmplan_core::plan::Plan;
 use swarmplan_io::scenario::build_world;
@@ -31,10 +31,10 @@ fn the_paper_profile_counts_only_its_hard_kinds_and_costs_the_same() {
             strict_world.goal_at(swarmplan_core::world::DEPARTURE),
             10,
         );
-        let strict = assess(&strict_world, &plan, true);
-        let paper = assess(&paper_world, &plan, true);
+        let strict = assess(&strict_world, &plan);
+        let paper = assess(&paper_world, &plan);
         // The flown path (radius 50 m) is another trajectory: another cost.
-        let arcs = assess(&arcs_world, &plan, true);
+        let arcs = assess(&arcs_world, &plan);
         assert_ne!(arcs.total, strict.total, "{case}");
         let paper_default_radius = {
             let mut l = load_spec(case).unwrap();
@@ -42,7 +42,9 @@ fn the_paper_profile_counts_only_its_hard_kinds_and_costs_the_same() {
             build_world(&l, None).unwrap()
         };
         assert_eq!(
-            assess(&paper_default_radius, &plan, false).total.to_bits(),
+            assess_as_searched(&paper_default_radius, &plan)
+                .total
+                .to_bits(),
             paper.total.to_bits(),
             "{case}: the paper profile ignores the turning radius"
         );

@@ -7,7 +7,7 @@
 
 #![allow(clippy::unwrap_used)] // tests fail loudly by design
 
-use swarmplan_core::cost::assess;
+use swarmplan_core::cost::assess_as_searched;
 use swarmplan_core::cost::TermId;
 use swarmplan_core::encoding::{build, EncodingKind};
 use swarmplan_io::reference_data::reference_files;
@@ -75,7 +75,7 @@ fn matches_spso_mycost_on_every_reference_vector() {
             close(w[k + 1].y, yr, &format!("vector {idx} node {k} y"));
             close(w[k + 1].z, zr, &format!("vector {idx} node {k} z"));
         }
-        let a = assess(world, &plan, false);
+        let a = assess_as_searched(world, &plan);
         let t = a.per_uav[0].raw;
         close(
             t[TermId::Length],

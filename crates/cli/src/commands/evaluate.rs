@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Args;
 use swarmplan_core::cost::assess;
-use swarmplan_io::artifact::AssessmentReport;
+use swarmplan_io::artifact::AssessmentRecord;
 use swarmplan_io::plan_file::{read_plan, Provenance};
 
 use crate::render;
@@ -34,11 +34,11 @@ pub fn run(args: &EvaluateArgs) -> Result<()> {
         Provenance::MustMatch
     };
     let plan = read_plan(&args.plan, &world, provenance)?;
-    let a = assess(&world, &plan, true);
+    let a = assess(&world, &plan);
     if args.json {
         println!(
             "{}",
-            serde_json::to_string_pretty(&AssessmentReport::of(&a))?
+            serde_json::to_string_pretty(&AssessmentRecord::of(&a))?
         );
     } else {
         print!("{}", render::assessment(&world, &a));

@@ -27,7 +27,7 @@ pub fn run(args: &ReportArgs) -> Result<()> {
     let html = if folder.holds_plan() {
         let world = build_world(&folder.load_scenario()?, None)?;
         let plan = folder.read_plan(&world)?;
-        let a = assess(&world, &plan, true);
+        let a = assess(&world, &plan);
         let subtitle = match folder.read_run()? {
             Some(run) => run.describe(),
             None => "plan loaded from plan.json".into(),

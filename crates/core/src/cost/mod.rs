@@ -43,7 +43,7 @@ pub fn cost_per_uav(total: f64, uavs: usize) -> f64 {
 
 /// What a report says about one UAV.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-pub struct UavReport {
+pub struct UavAssessment {
     /// Each term's value before weighting, in its unit ([`TermId::unit`]).
     pub raw: Terms,
     /// Each term's value times its weight in the scenario's `[objective]`.
@@ -70,7 +70,7 @@ pub struct UavReport {
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 pub struct Assessment {
     /// What the assessment says of each UAV, in fleet order.
-    pub per_uav: Vec<UavReport>,
+    pub per_uav: Vec<UavAssessment>,
     /// Sum of the UAVs' weighted terms.
     pub terms_cost: f64,
     /// Penalty for hard violations (0 under `spso`, where collisions are +inf instead).
@@ -159,7 +159,7 @@ pub struct Scratch {
     comm_out: Vec<comm::CommOutcome>,
     prox: proximity::ProximityScratch,
     prox_out: Vec<f64>,
-    reports: Vec<UavReport>,
+    reports: Vec<UavAssessment>,
     /// The UAVs' own violations of a bounded assessment, replayed after the rest.
     deferred: Vec<crate::feasibility::Deferred>,
     /// Each UAV's terms on its waypoints in a bounded assessment, kept for its flown terms.
@@ -171,7 +171,7 @@ pub struct Scratch {
 impl Scratch {
     /// The per-UAV reports of the last assessment made on these buffers.
     #[must_use]
-    pub fn reports(&self) -> &[UavReport] {
+    pub fn reports(&self) -> &[UavAssessment] {
         &self.reports
     }
 
@@ -183,17 +183,29 @@ impl Scratch {
     }
 }
 
-/// Assesses `plan` (allocating); `report` asks for the violation list and exact clearances.
+/// Assesses `plan` (allocating) in full: every violation listed with its place, clearances
+/// exact. What `evaluate`, `plan.json` and the exports report.
 #[must_use]
-pub fn assess(world: &World, plan: &Plan, report: bool) -> Assessment {
+pub fn assess(world: &World, plan: &Plan) -> Assessment {
+    assess_with(world, plan, true)
+}
+
+/// Assesses `plan` (allocating) as the optimizers do ([`assess_into`]): totals without the
+/// violation list, clearances from the fast terrain table.
+#[must_use]
+pub fn assess_as_searched(world: &World, plan: &Plan) -> Assessment {
+    assess_with(world, plan, false)
+}
+
+fn assess_with(world: &World, plan: &Plan, exact: bool) -> Assessment {
     let mut scratch = Scratch::default();
     let profile = world.spec().planning.profile;
-    let mut sink = if report {
+    let mut sink = if exact {
         ViolationSink::collecting(profile)
     } else {
         ViolationSink::new(profile)
     };
-    let (total, violation) = assess_into(world, plan, &mut scratch, &mut sink, report);
+    let (total, violation) = assess_into(world, plan, &mut scratch, &mut sink, exact);
     let terms_cost = scratch.reports.iter().map(|r| r.cost).sum::<f64>();
     Assessment {
         per_uav: std::mem::take(&mut scratch.reports),
@@ -262,7 +274,7 @@ pub fn assess_bounded(
     let n = plan.uavs.len();
     scratch.own_terms.serve(world.id());
     scratch.timed.fill(world, plan);
-    scratch.reports.resize_with(n, UavReport::default);
+    scratch.reports.resize_with(n, UavAssessment::default);
     scratch.comm_out.resize(n, comm::CommOutcome::default());
     scratch.prox_out.resize(n, 0.0);
     if !staged::staged_terms(world, plan, scratch, sink, exact, cutoff) {
@@ -423,7 +435,7 @@ fn flown_terms(
     on_waypoints: WaypointTerms,
     memo: &mut own_memo::OwnMemo,
     sink: &mut ViolationSink,
-) -> UavReport {
+) -> UavAssessment {
     let path = &plan.uavs[u];
     let tp = &timed.paths[u];
     let fp = &motion.paths[u];
@@ -448,7 +460,7 @@ fn flown_terms(
     raw[TermId::Safety] = safety;
     raw[TermId::Energy] = energy::energy_term(world, fp, vertical, kin);
     debug_assert!(raw.zero_after(term::Phase::Flown));
-    UavReport {
+    UavAssessment {
         raw,
         length_m: fp.length,
         speed_mps: fp.speed,
@@ -456,6 +468,6 @@ fn flown_terms(
         energy_j: joules,
         battery_ratio,
         min_clearance_m: min_clearance,
-        ..UavReport::default()
+        ..UavAssessment::default()
     }
 }

@@ -18,7 +18,7 @@
 use super::spso::Collisions;
 use super::{
     comm, fleet_terms, flown_terms, fly, penalty, waypoint_terms, FleetBuffers, Scratch, TermId,
-    UavReport, WaypointTerms,
+    UavAssessment, WaypointTerms,
 };
 use crate::feasibility::ViolationSink;
 use crate::plan::Plan;
@@ -89,7 +89,7 @@ pub(super) fn staged_terms(
     let mut own = own_sink(sink, std::mem::take(&mut scratch.deferred));
     // The least the plan can cost: its terms known so far (the rest are >= 0) and the
     // penalty of the violations found so far.
-    let least_cost = |reports: &[UavReport], own: &ViolationSink| {
+    let least_cost = |reports: &[UavAssessment], own: &ViolationSink| {
         let mut terms = 0.0;
         for r in reports {
             terms += r.raw.weighted(&weights).sum();
@@ -102,7 +102,7 @@ pub(super) fn staged_terms(
     };
     let over_violation =
         |own: &ViolationSink| reordered_lower_bound(own.measure, own.count) > cutoff.violation;
-    let over_cost = |reports: &[UavReport], own: &ViolationSink| {
+    let over_cost = |reports: &[UavAssessment], own: &ViolationSink| {
         cutoff.cost < f64::INFINITY && least_cost(reports, own) > cutoff.cost
     };
     let mut given_up = false;
@@ -122,9 +122,9 @@ pub(super) fn staged_terms(
             &mut own,
         );
         scratch.on_waypoints[u] = on_waypoints;
-        scratch.reports[u] = UavReport {
+        scratch.reports[u] = UavAssessment {
             raw: on_waypoints.raw(),
-            ..UavReport::default()
+            ..UavAssessment::default()
         };
         // A term at +inf makes the total +inf (or NaN, which is +inf too), whatever the
         // weights.
@@ -213,7 +213,7 @@ fn bounded_fleet_terms(
     plan: &Plan,
     motion: &TimedPlan,
     fleet: FleetBuffers<'_>,
-    (reports, own): (&[UavReport], &ViolationSink),
+    (reports, own): (&[UavAssessment], &ViolationSink),
     sink: &mut ViolationSink,
     cutoff: Cutoff,
 ) -> bool {

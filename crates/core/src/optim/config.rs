@@ -16,7 +16,7 @@ pub const POPULATION_RANGE: std::ops::RangeInclusive<usize> = 4..=100_000;
 /// How [`POPULATION_RANGE`] is said in messages.
 pub const POPULATION_EXPECTED: &str = "a whole number in [4, 100000]";
 
-/// A parameter with a bad value; `field` is its path (`dls_smpso.pso.velocity_clamp`).
+/// A parameter with a bad value; `field` is its path (`dls_paper.pso.velocity_clamp`).
 #[derive(Debug, Error, Clone, PartialEq)]
 #[error("{field}: expected {expected}, got {got}")]
 pub struct ParamsError {

@@ -29,12 +29,13 @@ pub use super::config::{
 
 /// The one list of optimizers. Each line names the [`OptimizerKind`] variant, its name on
 /// the command line and in records, its section in [`OptimizerParams`] (and in a
-/// `--params` TOML file) and the section's type, which implements [`OptimizerConfig`].
+/// `--params` TOML file), optionally `| "old"` an earlier name of the section that is still
+/// read, and the section's type, which implements [`OptimizerConfig`].
 /// Everything that enumerates optimizers (the enum, `ALL`, names, the parameter struct,
 /// validation, population, [`build`], messages and help texts) is generated from it, so a
 /// new optimizer is its own file and one line here (docs/contributing.md).
 macro_rules! optimizer_registry {
-    ($($(#[$doc:meta])* $kind:ident = $name:literal, $section:ident: $params:ty;)*) => {
+    ($($(#[$doc:meta])* $kind:ident = $name:literal, $section:ident $(| $old:literal)?: $params:ty;)*) => {
         /// The optimizers, one file each, listed once in the registry of `optim/params.rs`.
         #[derive(
             Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize,
@@ -56,7 +57,7 @@ macro_rules! optimizer_registry {
             }
 
             /// The optimizer's section in [`OptimizerParams`] and in a `--params` file
-            /// (`dls_smpso`).
+            /// (`dls_paper`).
             #[must_use]
             pub const fn section(self) -> &'static str {
                 match self {
@@ -80,7 +81,7 @@ macro_rules! optimizer_registry {
         #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
         #[serde(deny_unknown_fields, default)]
         pub struct OptimizerParams {
-            $($(#[$doc])* pub $section: $params,)*
+            $($(#[$doc])* $(#[serde(alias = $old)])? pub $section: $params,)*
         }
 
         impl OptimizerParams {
@@ -126,7 +127,9 @@ optimizer_registry! {
     /// and SPSO share it, on whatever encoding the method names.
     Pso = "pso", pso: PsoParams;
     /// DLS-SMPSO as the paper defines it ([`super::dls_paper`]).
-    DlsPaper = "dls-paper", dls_smpso: DlsPaperParams;
+    /// Section `dls_paper`, named after the optimizer like every other; files of earlier
+    /// versions called it `dls_smpso` (after the method preset), which is still read.
+    DlsPaper = "dls-paper", dls_paper | "dls_smpso": DlsPaperParams;
     /// DLS-SMPSO with Xu et al.'s exemplars ([`super::dls_exemplar`]).
     DlsExemplar = "dls-exemplar", dls_exemplar: DlsExemplarParams;
     /// Quantum-behaved PSO ([`super::qpso`]).
@@ -244,21 +247,25 @@ mod tests {
             serde_json::from_str(r#"{"dls_exemplar": {"pso": {"population": 20}}}"#)
                 .expect("parses");
         assert_eq!(p.dls_exemplar.pso.population, 20);
-        assert_eq!(p.dls_smpso.lambda, 0.5);
+        assert_eq!(p.dls_paper.lambda, 0.5);
         assert_eq!(p.gwo, GwoParams::DEFAULT);
         assert!(serde_json::from_str::<OptimizerParams>(r#"{"pso": {"inertai": 1}}"#).is_err());
         assert!(serde_json::from_str::<OptimizerParams>(r#"{"sps": {}}"#).is_err());
+        // The section's old name is still read.
+        let old: OptimizerParams =
+            serde_json::from_str(r#"{"dls_smpso": {"lambda": 0.25}}"#).expect("old section");
+        assert_eq!(old.dls_paper.lambda, 0.25);
     }
 
     #[test]
     fn validation_names_the_field() {
         let mut p = OptimizerParams::default();
-        p.dls_smpso.pso.velocity_clamp = -1.0;
+        p.dls_paper.pso.velocity_clamp = -1.0;
         let e = p.validate().expect_err("negative clamp");
-        assert_eq!(e.field, "dls_smpso.pso.velocity_clamp");
+        assert_eq!(e.field, "dls_paper.pso.velocity_clamp");
         assert!(e
             .to_string()
-            .starts_with("dls_smpso.pso.velocity_clamp: expected"));
+            .starts_with("dls_paper.pso.velocity_clamp: expected"));
         let mut p = OptimizerParams::default();
         p.abc.population = 3;
         assert_eq!(

@@ -150,7 +150,7 @@ impl BlockProblem for PlanningProblem<'_> {
             return false;
         }
         let plan = self.encoding.decode(x);
-        let assessed = assess(self.world, &plan, true);
+        let assessed = assess(self.world, &plan);
         let path = &plan.uavs[block].waypoints;
         let delayed = self.world.spec().timing.delay_is_free();
         out.resize(n + usize::from(delayed), 0.0);

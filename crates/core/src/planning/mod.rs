@@ -187,7 +187,7 @@ impl<'w> PlanningProblem<'w> {
     /// Full assessment (with the violation list) of the plan that `x` decodes to.
     #[must_use]
     pub fn assess(&self, x: &[f64]) -> Assessment {
-        assess(self.world, &self.decode(x), true)
+        assess(self.world, &self.decode(x))
     }
 }
 

@@ -354,7 +354,7 @@ impl Mission {
             threats,
             goal: frame.to_geodetic(DVec3::new(g.x, g.y, world.terrain().height(g.x, g.y)))?,
             infeasible: {
-                let a = swarmplan_core::cost::assess(world, plan, true);
+                let a = swarmplan_core::cost::assess(world, plan);
                 (!a.feasible()).then(|| a.verdict())
             },
             pace: plan.pace,
