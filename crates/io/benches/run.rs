@@ -1,5 +1,5 @@
 //! Whole runs at paper settings (population 50, 200 iterations). Targets (issue 3): one
-//! single-UAV SPSO run with the `spso` objective <= 20 ms (issue 12: <= 10 ms); one
+//! single-UAV SPSO run with the `spso-mycost` objective <= 20 ms (issue 12: <= 10 ms); one
 //! DLS-SMPSO run of a 5-UAV paper case <= 0.25 s. SPSO's DEM is used when `../shared/data/spso` has it, else the
 //! procedural terrain. And one run of swarmplan's own method, `plan`'s default, at its
 //! default budget (38,700 evaluations), seed 1 every time.

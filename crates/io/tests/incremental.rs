@@ -275,7 +275,7 @@ fn bounded_evaluations_give_up_below_the_violation_and_not_above() {
     assert_eq!(kept.violation.to_bits(), full.violation.to_bits());
 }
 
-/// The worlds of [`worlds`], then two under the `spso` objective preset (SPSO's MyCost: no
+/// The worlds of [`worlds`], then two under the `spso-mycost` objective preset (SPSO's MyCost: no
 /// fleet terms, collisions at +inf; one UAV): spso-case1 and spso-case2 on the procedural
 /// terrain.
 fn worlds_and_spso_presets() -> &'static [World] {
@@ -283,7 +283,7 @@ fn worlds_and_spso_presets() -> &'static [World] {
     W.get_or_init(|| {
         let spso = |name: &str| {
             let mut loaded = load_spec(name).unwrap();
-            loaded.spec.objective.preset = ObjectivePreset::Spso;
+            loaded.spec.objective.preset = ObjectivePreset::SpsoMycost;
             build_world(&loaded, None).unwrap()
         };
         let mut all = worlds().to_vec();
@@ -328,7 +328,7 @@ proptest! {
     }
 }
 
-/// Under the `spso` preset a cost-bounded evaluation gives up too: SPSO's terms on the
+/// Under the `spso-mycost` objective preset a cost-bounded evaluation gives up too: SPSO's terms on the
 /// waypoints are its whole cost, so a plan costing twice the cutoff is not assessed further,
 /// and a plan that collides (+inf) is given up at its first collision under any finite
 /// cutoff (`f64::MAX`, what a particle whose pbest collides passes), while one that does not

@@ -1,7 +1,7 @@
 //! Cross-check against the SPSO reference code: every vector of
 //! `shared/data/spso/cost-vectors.json` (computed by SPSO's own `SphericalToCart` and
 //! `MyCost` in GNU Octave on its DEM) is decoded with the spherical encoding in SPSO's
-//! convention and costed with the `spso` preset; waypoints and each term must match to 1e-9
+//! convention and costed with the `spso-mycost` objective preset; waypoints and each term must match to 1e-9
 //! relative, `Inf` where the reference says `Inf`. Skipped, saying so, when the files are
 //! absent (they live in the CI's `shared/` folder, not in the repository).
 

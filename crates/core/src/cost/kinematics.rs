@@ -21,7 +21,7 @@ pub struct Kinematics {
 }
 
 /// Computes the sums for UAV `uav` and reports turn and climb violations. The sums are
-/// computed under every objective preset: the `spso` preset weighs Eq. 7 at 0, but the
+/// computed under every objective preset: the `spso-mycost` objective preset weighs Eq. 7 at 0, but the
 /// battery check needs the radians turned (until issue 45 it skipped them there, and the
 /// turning energy counted only the turns that broke the limit).
 pub fn kinematics(

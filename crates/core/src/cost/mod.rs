@@ -5,7 +5,7 @@
 //!                        + w2 J_safety + w3 J_energy + w4 J_comm + w5 J_turning + w6 J_obstacle ]
 //!     + penalty x (violation measure)
 //!
-//! The `spso` preset keeps only SPSO's MyCost (5 J1 + J2 + 10 J3 + J4, +inf on collision)
+//! The `spso-mycost` objective preset keeps only SPSO's MyCost (5 J1 + J2 + 10 J3 + J4, +inf on collision)
 //! for single-UAV cross-checks. Every term lives in its own file; this one only combines them.
 //! [`assess`] is the one entry point: the optimizer's hot path and the report use the same
 //! code, the report merely asks for the violation list and exact clearances.
@@ -221,7 +221,7 @@ fn assess_with(world: &World, plan: &Plan, exact: bool) -> Assessment {
 
 fn penalty(world: &World, violation: f64) -> f64 {
     let o = &world.spec().objective;
-    if o.preset == ObjectivePreset::Spso || violation == 0.0 {
+    if o.preset == ObjectivePreset::SpsoMycost || violation == 0.0 {
         0.0
     } else {
         o.violation_penalty * violation
@@ -254,12 +254,12 @@ pub fn assess_into(
 /// One driver serves every assessment, full or bounded, report or hot path
 /// (`cost/staged.rs`): the terms are computed in three phases ([`term::Phase`]), the UAVs' own
 /// terms first, into a sink that records their violations: every UAV's terms on its
-/// waypoints (threat band, altitude, turns, climb, turning radius; under the `spso` preset
+/// waypoints (threat band, altitude, turns, climb, turning radius; under the `spso-mycost` objective preset
 /// and a finite cost cutoff they stop at a collision, which makes the cost +inf), checked
 /// against the cutoff after each UAV and for cost after all; then the flown paths are built
 /// and every UAV's terms on them (arc threats, clearance, speed, battery), checked
 /// likewise; then the fleet's: the communication sweep (checked for violation and cost) and
-/// proximity (checked for violation), which the `spso` preset does not have. Then the
+/// proximity (checked for violation), which the `spso-mycost` objective preset does not have. Then the
 /// recorded violations (with their places and details when `sink` keeps a list) are added
 /// to `sink` after the fleet's, UAV by UAV, so a plan not given up gets the same bits
 /// whatever the cutoff.
@@ -365,7 +365,7 @@ impl WaypointTerms {
 /// UAV `u`'s terms and constraints on its waypoints, the first part of its own terms.
 /// `flown` holds the turns' tangent lengths when the world flies arcs
 /// ([`TimedPlan::fill_tangents`]). `collisions` is [`spso::Collisions::Penalised`] but under
-/// the `spso` preset; with [`spso::Collisions::InfiniteAndStop`] a UAV whose SPSO terms
+/// the `spso-mycost` objective preset; with [`spso::Collisions::InfiniteAndStop`] a UAV whose SPSO terms
 /// are +inf gets nothing more (and nothing is memoised, the terms being cut short).
 fn waypoint_terms(
     world: &World,

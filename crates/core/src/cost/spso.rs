@@ -8,7 +8,7 @@
 //!   and |change of climb angle| if it exceeds 45 deg (degrees; zero-length projections are
 //!   skipped by looking further back / ahead).
 //!
-//! Under the `spso` preset ([`Collisions::Infinite`]) a collision or a crash makes the term
+//! Under the `spso-mycost` objective preset ([`Collisions::Infinite`]) a collision or a crash makes the term
 //! +inf as in SPSO. Otherwise the band keeps growing linearly inside the cylinder, so the
 //! search has a slope to follow, and the hard violation is reported to the sink.
 
@@ -52,7 +52,7 @@ impl SpsoTerms {
 pub enum Collisions {
     /// The threat band keeps growing inside the cylinder (the violation goes to the sink).
     Penalised,
-    /// +inf, as in SPSO's MyCost (the `spso` preset).
+    /// +inf, as in SPSO's MyCost (the `spso-mycost` objective preset).
     Infinite,
     /// +inf, and the terms stop at the first (the rest at 0, the later violations not
     /// reported): for a bounded assessment, to which a plan costing +inf is of no use.
@@ -61,14 +61,14 @@ pub enum Collisions {
 
 impl Collisions {
     /// What a collision costs under `objective` for an assessment that only matters below
-    /// `cost_cutoff` (+inf: a full one): +inf under the `spso` preset, stopping there when the
+    /// `cost_cutoff` (+inf: a full one): +inf under the `spso-mycost` objective preset, stopping there when the
     /// cutoff is finite; penalised otherwise.
     #[must_use]
     pub fn of(objective: &ObjectiveSpec, cost_cutoff: f64) -> Self {
         match (objective.preset, cost_cutoff < f64::INFINITY) {
-            (ObjectivePreset::Paper, _) => Self::Penalised,
-            (ObjectivePreset::Spso, false) => Self::Infinite,
-            (ObjectivePreset::Spso, true) => Self::InfiniteAndStop,
+            (ObjectivePreset::Cooperative, _) => Self::Penalised,
+            (ObjectivePreset::SpsoMycost, false) => Self::Infinite,
+            (ObjectivePreset::SpsoMycost, true) => Self::InfiniteAndStop,
         }
     }
 }

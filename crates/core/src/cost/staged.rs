@@ -11,7 +11,7 @@
 //! fleet's violations, then each UAV's own), so a plan not given up gets the same bits
 //! whatever the cutoff, and a full assessment ([`Cutoff::NONE`], or a report that keeps
 //! the violation list) is the same code never giving up ([`super::assess_bounded`]).
-//! Under the `spso` preset (SPSO's MyCost, one UAV, no fleet terms) the waypoint terms are
+//! Under the `spso-mycost` objective preset (SPSO's MyCost, one UAV, no fleet terms) the waypoint terms are
 //! the whole cost, and a collision makes it +inf: under a finite cutoff SPSO's terms stop at
 //! the first collision and the plan is given up.
 
@@ -81,7 +81,7 @@ pub(super) fn staged_terms(
     let flies_arcs = world.flies_arcs();
     let objective = &world.spec().objective;
     let weights = objective.weights();
-    // Under the `spso` preset SPSO's terms are the whole cost and there are no fleet terms;
+    // Under the `spso-mycost` objective preset SPSO's terms are the whole cost and there are no fleet terms;
     // a plan with a collision costs +inf, beyond any finite cutoff, so its terms may stop
     // there.
     let collisions = Collisions::of(objective, cutoff.cost);

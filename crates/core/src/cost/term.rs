@@ -94,7 +94,7 @@ impl TermId {
         }
     }
 
-    /// A term of the paper's cooperative model (weight 0 under the `spso` preset).
+    /// A term of the paper's cooperative model (weight 0 under the `spso-mycost` objective preset).
     #[must_use]
     pub const fn cooperative(self) -> bool {
         !matches!(
@@ -284,7 +284,7 @@ mod tests {
         let mut o = ObjectiveSpec::default();
         let raw = Terms::new([1.0; TERM_COUNT]);
         let paper = raw.weighted(&o.weights()).sum();
-        o.preset = ObjectivePreset::Spso;
+        o.preset = ObjectivePreset::SpsoMycost;
         let spso = raw.weighted(&o.weights()).sum();
         let own = [
             TermId::Length,

@@ -307,7 +307,7 @@ impl World {
     #[must_use]
     pub fn flies_arcs(&self) -> bool {
         self.spec.planning.profile == crate::feasibility::FeasibilityProfile::Strict
-            && self.spec.objective.preset != spec::ObjectivePreset::Spso
+            && self.spec.objective.preset != spec::ObjectivePreset::SpsoMycost
     }
 
     /// Absolute altitude of a point given as [x, y, z_agl].

@@ -17,11 +17,15 @@ use crate::cost::term::{term_named, TermId, Terms, NAMES, TERM_COUNT};
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "kebab-case")]
 pub enum ObjectivePreset {
-    /// SPSO terms per UAV plus the paper's cooperative terms, hard violations penalised.
+    /// The DLS-SMPSO paper's Eq. 2: SPSO's terms per UAV plus the cooperative terms, hard
+    /// violations penalised (`cooperative`; `paper` in files before issue 44, still read).
     #[default]
-    Paper,
-    /// SPSO's MyCost exactly (collisions cost +inf); single-UAV cross-checks.
-    Spso,
+    #[serde(alias = "paper")]
+    Cooperative,
+    /// SPSO's `MyCost.m` exactly (collisions cost +inf); single-UAV cross-checks
+    /// (`spso-mycost`; `spso` in files before issue 44, still read).
+    #[serde(alias = "spso")]
+    SpsoMycost,
 }
 
 /// Weights of Eq. 2 (the paper's w1..w6) on top of SPSO's per-UAV terms.
@@ -41,7 +45,7 @@ pub struct ObjectiveSpec {
 impl Default for ObjectiveSpec {
     fn default() -> Self {
         Self {
-            preset: ObjectivePreset::Paper,
+            preset: ObjectivePreset::Cooperative,
             weights: Terms::new(TermId::ALL.map(TermId::default_weight)),
             obstacle_epsilon: 1.0,
             violation_penalty: 1000.0,
@@ -51,10 +55,10 @@ impl Default for ObjectiveSpec {
 
 impl ObjectiveSpec {
     /// The weight the cost gives term `t`: its weight, but 0 for a cooperative term under
-    /// the `spso` preset (SPSO's MyCost has only its own four terms).
+    /// the `spso-mycost` objective preset (SPSO's MyCost has only its own four terms).
     #[must_use]
     pub fn weight(&self, t: TermId) -> f64 {
-        if t.cooperative() && self.preset == ObjectivePreset::Spso {
+        if t.cooperative() && self.preset == ObjectivePreset::SpsoMycost {
             0.0
         } else {
             self.weights[t]
@@ -178,9 +182,18 @@ mod tests {
         assert!(toml::from_str::<ObjectiveSpec>("length = \"x\"\n").is_err());
         let text = toml::to_string(&ObjectiveSpec::default()).expect("writes");
         assert!(
-            text.starts_with("preset = \"paper\"\nlength = 5.0\nthreat = 1.0\n"),
+            text.starts_with("preset = \"cooperative\"\nlength = 5.0\nthreat = 1.0\n"),
             "{text}"
         );
+        // The names of files written before issue 44 are still read.
+        for (old, preset) in [
+            ("paper", ObjectivePreset::Cooperative),
+            ("spso", ObjectivePreset::SpsoMycost),
+        ] {
+            let spec: ObjectiveSpec =
+                toml::from_str(&format!("preset = \"{old}\"\n")).expect("an old name");
+            assert_eq!(spec.preset, preset);
+        }
         assert_eq!(
             toml::from_str::<ObjectiveSpec>(&text).expect("reads back"),
             ObjectiveSpec::default()

@@ -418,7 +418,7 @@ impl ScenarioSpec {
         Ok(())
     }
 
-    /// `[objective]`: non-negative weights; the `spso` preset for one UAV only.
+    /// `[objective]`: non-negative weights; the `spso-mycost` objective preset for one UAV only.
     fn validate_objective(&self) -> Result<(), SpecError> {
         let o = &self.objective;
         for (t, v) in o.weights.iter() {
@@ -426,10 +426,10 @@ impl ScenarioSpec {
         }
         non_negative("objective.violation_penalty", o.violation_penalty)?;
         positive("objective.obstacle_epsilon", o.obstacle_epsilon)?;
-        if o.preset == ObjectivePreset::Spso && self.uavs.len() != 1 {
+        if o.preset == ObjectivePreset::SpsoMycost && self.uavs.len() != 1 {
             return Err(err(
                 "objective.preset",
-                "exactly one UAV for the `spso` preset (SPSO's MyCost is single-UAV)",
+                "exactly one UAV for the `spso-mycost` objective preset (SPSO's MyCost is single-UAV)",
                 format!("{} UAVs", self.uavs.len()),
             ));
         }
