@@ -134,6 +134,12 @@ fn zone_edge_note(world: &World, violations: &[Violation]) -> Option<String> {
             "; free departure delays (`timing.max_delay`) would let them take off one after another"
         }
     };
+    let slots = match (take_off > 0, landing > 0) {
+        _ if world.slots().any() => String::new(),
+        (true, true) => "; launch and recovery slots (`timing.launch_interval`, `timing.recovery_interval`; docs/model.md) would take them off and land them one after another".into(),
+        (true, false) => "; launch slots (`timing.launch_interval`; docs/model.md) would take them off one after another".into(),
+        _ => "; recovery slots (`timing.recovery_interval`; docs/model.md) would land them one after another".into(),
+    };
     let n = conflicts.len();
     let place = match (take_off, landing) {
         (t, 0) => format!("{t} of the {n} where UAVs leave the take-off zone"),
@@ -141,7 +147,7 @@ fn zone_edge_note(world: &World, violations: &[Violation]) -> Option<String> {
         (t, l) => format!("{t} of the {n} where UAVs leave the take-off zone and {l} where they enter the landing zone"),
     };
     Some(format!(
-        "  separation conflicts: {place} ({r} m around a start or UGV0; separation counts outside it): UAVs that cross its edge together must part by at least {parting:.0} deg there (2 asin({d} / {})), or cross it at different speeds or times{delays}; `plan --attempts K` tries further seeds",
+        "  separation conflicts: {place} ({r} m around a start or UGV0; separation counts outside it): UAVs that cross its edge together must part by at least {parting:.0} deg there (2 asin({d} / {})), or cross it at different speeds or times{delays}{slots}; `plan --attempts K` tries further seeds",
         2.0 * r
     ))
 }
@@ -299,6 +305,10 @@ mod tests {
             "{note}"
         );
         assert!(!note.contains("delays"), "{note}");
+        assert!(
+            note.contains("recovery slots (`timing.recovery_interval`"),
+            "{note}"
+        );
         // En route only, or a soft conflict: no note.
         assert_eq!(zone_edge_note(&world, &[en_route]), None);
         let soft = Violation {

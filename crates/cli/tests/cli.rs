@@ -77,7 +77,7 @@ fn plan_writes_files_that_evaluate_reads_back_with_the_same_cost() {
         "encoding",
         "init",
         "budget",
-        "report",
+        "assessment",
         "evaluations",
         "seconds",
         "files",

@@ -47,8 +47,13 @@ pub struct TimedPath {
     pub arrival: f64,
     /// Departure delay as a share of the arrival time ([`Plan::delay`]): 0 leaves at once.
     pub delay: f64,
-    /// Departure time (s): it hovers at its start until then.
+    /// Departure time (s): it waits at its start until then (on the launcher until
+    /// `launch`, hovering after).
     pub depart: f64,
+    /// When it takes off (s): no earlier than its launch slot ([`crate::world::slots`]);
+    /// until then it stands on the launcher at its start, drawing no power. 0 without
+    /// slots.
+    pub launch: f64,
     /// Of a flown path ([`TimedPlan::fill_flown`]): where each segment comes from (an arc
     /// chord or a straight piece, of which waypoint segment). Empty for a waypoint path.
     pub flown: Vec<crate::flight::FlownSegment>,
@@ -343,10 +348,12 @@ impl TimedPlan {
     /// the timing policy.
     fn schedule(&mut self, world: &World) {
         let uavs = &world.spec().uavs;
+        let slots = world.slots();
         match world.spec().timing.policy {
             TimingPolicy::Cruise => {
                 for (tp, u) in self.paths.iter_mut().zip(uavs) {
                     tp.speed = u.cruise_speed * self.pace;
+                    tp.launch = 0.0;
                     let flight = tp.length / tp.speed;
                     if tp.delay > 0.0 {
                         // delta of the arrival time waiting: depart = delta / (1 - delta) x flight.
@@ -375,13 +382,43 @@ impl TimedPlan {
                     self.pace,
                 );
                 for tp in &mut self.paths {
+                    tp.launch = 0.0;
                     tp.speed = if t > 0.0 { effective(tp) / t } else { 0.0 };
                     tp.depart = if tp.delay > 0.0 { tp.delay * t } else { 0.0 };
                     tp.arrival = t;
                 }
             }
         }
+        if slots.any() {
+            self.shift_into_slots(world);
+        }
         self.horizon = self.paths.iter().map(|p| p.arrival).fold(0.0, f64::max);
+    }
+
+    /// Moves each UAV's whole flight later to fit the launch and recovery slots
+    /// ([`crate::world::slots`]): its speed, hover and flight time stay those of the schedule
+    /// without slots, and it waits on the launcher (drawing nothing) until it takes off.
+    /// Under cruise UAV i takes off at its launch slot a_i. Under common arrival it lands at
+    /// T + c + b_i (b_i its recovery slot, T the arrival time without slots), where
+    /// c = max(0, max_i (a_i - b_i)) is the least common lag that lets every UAV take off no
+    /// earlier than its launch slot; c depends on the slots alone.
+    fn shift_into_slots(&mut self, world: &World) {
+        let slots = world.slots();
+        let n = self.paths.len();
+        let lag = (0..n)
+            .map(|i| slots.launch(i) - slots.recovery(i))
+            .fold(0.0, f64::max);
+        let common = world.spec().timing.policy == TimingPolicy::CommonArrival;
+        for (i, tp) in self.paths.iter_mut().enumerate() {
+            let shift = if common {
+                lag + slots.recovery(i)
+            } else {
+                slots.launch(i)
+            };
+            tp.launch = shift;
+            tp.depart += shift;
+            tp.arrival += shift;
+        }
     }
 }
 

@@ -19,7 +19,7 @@ pub const GENERATED_WINDOWS: usize = 1;
 pub const GENERATED_SIZES: [usize; 3] = [8, 12, 20];
 
 /// A suite's name and what it holds, for `--help` and errors.
-pub const SUITES: [(&str, &str); 14] = [
+pub const SUITES: [(&str, &str); 18] = [
     ("paper", "paper-case1 and paper-case2"),
     (
         "outside",
@@ -31,17 +31,27 @@ pub const SUITES: [(&str, &str); 14] = [
     ),
     ("outside-u1", "the same with one UAV (outside-K-u1)"),
     (
+        "outside-slots",
+        "the same with launch and recovery slots 5 s apart (outside-K-slots; -delay-slots: both)",
+    ),
+    (
         "outside-dev",
         "the 22 development instances (all but the held-out 7, 11, 15, 19, 23, 27)",
     ),
     ("outside-dev-delay", "the same with departure delays free"),
     ("outside-dev-u1", "the same with one UAV"),
+    ("outside-dev-slots", "the same with slots"),
+    (
+        "outside-dev-delay-slots",
+        "the same with slots and delays free",
+    ),
     (
         "outside-held",
         "the 6 held-out instances 7, 11, 15, 19, 23, 27: only to report a design already kept",
     ),
     ("outside-held-delay", "the same with departure delays free"),
     ("outside-held-u1", "the same with one UAV"),
+    ("outside-held-slots", "the same with slots"),
     (
         "generated-8",
         "20 generated instances, 8 UAVs, 12 threats, 1 interference window, spread starts",
@@ -70,6 +80,8 @@ fn outside(name: &str) -> Option<Vec<String>> {
         "" => "",
         "-delay" => "-delay",
         "-u1" => "-u1",
+        "-slots" => "-slots",
+        "-delay-slots" => "-delay-slots",
         _ => return None,
     };
     Some(
@@ -92,6 +104,7 @@ fn generated(uavs: usize) -> impl Iterator<Item = String> {
             terrain: None,
             free_pace: false,
             free_delays: false,
+            slots: false,
         }
         .name()
     })

@@ -25,6 +25,10 @@
 //! [`swarmplan_core::encoding::delayed`]): a UAV may hover at the shared start, above the
 //! ground station, while the others fly out of its sight (docs/results.md, "Departure
 //! delays"). A variant, not the instance itself, so that every result on `outside-K` stands.
+//!
+//! `outside-K[-uN][-delay]-slots` adds launch and recovery slots
+//! ([`crate::generate::SLOT_INTERVAL_S`] apart; docs/model.md, "Launch and recovery slots"):
+//! the fleet shares its start, so it takes off in turn, and UGV0 recovers it in turn.
 
 use std::path::{Path, PathBuf};
 
@@ -106,10 +110,26 @@ pub enum OutsideError {
     Template(#[from] Box<ScenarioError>),
 }
 
-/// The scenario name `outside-K[-uN][-delay]` as (instance file stem, UAVs, delays free),
-/// or `None`.
+/// What an outside scenario's name asks for.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct OutsideName {
+    /// The instance's file stem, `outside-K`.
+    pub stem: String,
+    /// UAVs (5 unless `-uN`).
+    pub uavs: usize,
+    /// Departure delays free (`-delay`).
+    pub delay: bool,
+    /// Launch and recovery slots (`-slots`).
+    pub slots: bool,
+}
+
+/// The scenario name `outside-K[-uN][-delay][-slots]` as what it asks for, or `None`.
 #[must_use]
-pub fn parse_name(name: &str) -> Option<(String, usize, bool)> {
+pub fn parse_name(name: &str) -> Option<OutsideName> {
+    let (name, slots) = match name.strip_suffix("-slots") {
+        Some(base) => (base, true),
+        None => (name, false),
+    };
     let (base, delay) = match name.strip_suffix("-delay") {
         Some(base) => (base, true),
         None => (name, false),
@@ -133,8 +153,12 @@ pub fn parse_name(name: &str) -> Option<(String, usize, bool)> {
     } else {
         format!("outside-{k}-u{n}")
     };
-    (canonical == base && (k == "0" || !k.starts_with('0')))
-        .then(|| (format!("outside-{k}"), n, delay))
+    (canonical == base && (k == "0" || !k.starts_with('0'))).then(|| OutsideName {
+        stem: format!("outside-{k}"),
+        uavs: n,
+        delay,
+        slots,
+    })
 }
 
 /// The folder of the instances: `data/outside` in the shared folder
@@ -150,14 +174,18 @@ pub fn instance_path(stem: &str) -> PathBuf {
     instance_dir().join(format!("{stem}.json"))
 }
 
-/// The scenario named `name` (`outside-K[-uN]`) from the shared folder, or `None` when the
+/// The scenario named `name` (`outside-K[-uN][-delay][-slots]`) from the shared folder, or `None` when the
 /// name is not of that form.
 pub fn load_named(name: &str) -> Option<Result<ScenarioSpec, OutsideError>> {
-    let (stem, uavs, delay) = parse_name(name)?;
+    let asked = parse_name(name)?;
     Some(
-        from_instance(&instance_path(&stem), uavs, name).map(|mut spec| {
-            if delay {
+        from_instance(&instance_path(&asked.stem), asked.uavs, name).map(|mut spec| {
+            if asked.delay {
                 spec.timing.max_delay = OUTSIDE_MAX_DELAY;
+            }
+            if asked.slots {
+                spec.timing.launch_interval = crate::generate::SLOT_INTERVAL_S;
+                spec.timing.recovery_interval = crate::generate::SLOT_INTERVAL_S;
             }
             spec
         }),
@@ -246,21 +274,53 @@ mod tests {
     fn names() {
         assert_eq!(
             parse_name("outside-0"),
-            Some(("outside-0".into(), 5, false))
+            Some(OutsideName {
+                stem: "outside-0".into(),
+                uavs: 5,
+                delay: false,
+                slots: false,
+            })
         );
         assert_eq!(
             parse_name("outside-3-u12"),
-            Some(("outside-3".into(), 12, false))
+            Some(OutsideName {
+                stem: "outside-3".into(),
+                uavs: 12,
+                delay: false,
+                slots: false,
+            })
         );
         assert_eq!(
             parse_name("outside-2-delay"),
-            Some(("outside-2".into(), 5, true))
+            Some(OutsideName {
+                stem: "outside-2".into(),
+                uavs: 5,
+                delay: true,
+                slots: false,
+            })
         );
         assert_eq!(
             parse_name("outside-2-u8-delay"),
-            Some(("outside-2".into(), 8, true))
+            Some(OutsideName {
+                stem: "outside-2".into(),
+                uavs: 8,
+                delay: true,
+                slots: false,
+            })
+        );
+        assert_eq!(
+            parse_name("outside-2-u8-delay-slots"),
+            Some(OutsideName {
+                stem: "outside-2".into(),
+                uavs: 8,
+                delay: true,
+                slots: true,
+            })
         );
         for bad in [
+            "outside-1-slots-delay",
+            "outside-1-slots-slots",
+            "outside-slots",
             "outside-",
             "outside-x",
             "outside-01",

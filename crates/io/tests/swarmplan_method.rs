@@ -32,6 +32,7 @@ fn generated() -> World {
         terrain: None,
         free_pace: false,
         free_delays: false,
+        slots: false,
     })
     .unwrap();
     let loaded = LoadedSpec {

@@ -491,6 +491,21 @@ fn print_summary(args: &PlanArgs, world: &World, attempts: &Attempts, written: &
             result.plan.pace, timing.pace[0], timing.pace[1]
         );
     }
+    if world.slots().any() {
+        let timed = swarmplan_core::timing::TimedPlan::flown(world, &result.plan);
+        let slots: Vec<String> = timed
+            .paths
+            .iter()
+            .enumerate()
+            .map(|(u, p)| format!("uav {u} {:.1}-{:.1} s", p.launch, p.arrival))
+            .collect();
+        println!(
+            "take-off and landing (launch slots {} s, recovery slots {} s apart): {}",
+            timing.launch_interval,
+            timing.recovery_interval,
+            slots.join(", ")
+        );
+    }
     if timing.delay_is_free() {
         let timed = swarmplan_core::timing::TimedPlan::flown(world, &result.plan);
         let departures: Vec<String> = timed

@@ -34,6 +34,11 @@ pub struct ScenarioGenerateArgs {
     /// every UAV leaves at once.
     #[arg(long)]
     pub free_delays: bool,
+    /// Launch everyone at once from a shared start and land everyone at UGV0 at once (the
+    /// paper's layout); default: launch and recovery slots 5 s apart (timing.launch_interval
+    /// and recovery_interval; docs/model.md "Launch and recovery slots").
+    #[arg(long)]
+    pub no_slots: bool,
     /// DEM (GeoTIFF or ESRI ASCII) whose extent becomes the map (default: procedural).
     #[arg(long)]
     pub terrain: Option<PathBuf>,
@@ -52,12 +57,13 @@ pub fn run(args: &ScenarioGenerateArgs) -> Result<()> {
         terrain: args.terrain.as_ref().map(|p| p.display().to_string()),
         free_pace: args.free_pace,
         free_delays: args.free_delays,
+        slots: !args.no_slots,
     })?;
     if let Some(terrain) = &args.terrain {
         spec.terrain.source = source_for(terrain, args.out.as_deref());
     }
     let text = format!(
-        "# swarmplan scenario generate --seed {} --uavs {} --threats {}{}{}{}{}{}\n{}",
+        "# swarmplan scenario generate --seed {} --uavs {} --threats {}{}{}{}{}{}{}\n{}",
         args.seed,
         args.uavs,
         args.threats,
@@ -77,6 +83,7 @@ pub fn run(args: &ScenarioGenerateArgs) -> Result<()> {
         } else {
             ""
         },
+        if args.no_slots { " --no-slots" } else { "" },
         args.terrain
             .as_ref()
             .map_or(String::new(), |t| format!(" --terrain {}", t.display())),

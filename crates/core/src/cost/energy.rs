@@ -76,9 +76,11 @@ pub fn physical_energy(
     };
     let moving =
         cruise + m.mass(payload) * G * vertical.climbed + m.turn_energy_per_rad * k.turn_abs;
-    if tp.depart > 0.0 {
-        // Hovering at the start until departure.
-        moving + m.power(0.0, payload) * tp.depart
+    let hover = tp.depart - tp.launch;
+    if hover > 0.0 {
+        // Hovering at the start from its launch slot until departure (on the launcher
+        // before, drawing nothing).
+        moving + m.power(0.0, payload) * hover
     } else {
         moving
     }

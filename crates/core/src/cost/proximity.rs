@@ -130,7 +130,10 @@ struct TimeUnit {
 
 impl TimeUnit {
     fn of(world: &World, timed: &TimedPlan) -> Self {
-        let common_arrival = world.spec().timing.policy == TimingPolicy::CommonArrival;
+        // With slots the windows differ by fixed seconds, so the fractions of T no longer
+        // scale alike: the sweep runs in seconds, and a change of T changes every motion.
+        let common_arrival =
+            world.spec().timing.policy == TimingPolicy::CommonArrival && !world.slots().any();
         let seconds = if common_arrival {
             timed.paths.first().map_or(0.0, |p| p.arrival)
         } else {

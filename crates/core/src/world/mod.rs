@@ -10,6 +10,7 @@ pub mod energy;
 pub mod horizon;
 pub mod objective;
 pub mod procedural;
+pub mod slots;
 pub mod spec;
 pub mod terrain;
 pub mod threat;
@@ -116,6 +117,8 @@ pub struct World {
     ground_nodes: Vec<GroundNode>,
     /// Goal [x, y, z_agl].
     goal: DVec3,
+    /// Each UAV's launch and recovery slot.
+    slots: slots::Slots,
     /// Which built world this is, for memos of what depends on it.
     id: WorldId,
 }
@@ -183,6 +186,12 @@ impl World {
     pub fn goal_at(&self, t: f64) -> DVec3 {
         let _ = t;
         self.goal
+    }
+
+    /// Each UAV's launch and recovery slot (all 0 unless `timing` asks for slots).
+    #[must_use]
+    pub fn slots(&self) -> &slots::Slots {
+        &self.slots
     }
 
     /// This world's identity (fresh for each world built or cloned).
@@ -280,6 +289,7 @@ impl World {
         }
         Ok(Self {
             goal: DVec3::from_array(g),
+            slots: slots::Slots::of(&spec),
             spec,
             terrain,
             channel,

@@ -364,6 +364,17 @@ pub struct TimingSpec {
     /// t = 0, the paper's layout (and not written out).
     #[serde(skip_serializing_if = "is_zero")]
     pub max_delay: f64,
+    /// Seconds between two launches from one take-off place ([`crate::world::slots`]): UAVs
+    /// whose starts lie within `zone_radius` of each other leave one after another, in the
+    /// scenario's order. 0 (the default): everyone may leave at t = 0, the paper's layout
+    /// (and not written out).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub launch_interval: f64,
+    /// Seconds between two recoveries at UGV0 under common arrival: UAV i lands at
+    /// T + i x this. 0 (the default): everyone lands at T, the paper's layout (and not
+    /// written out).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub recovery_interval: f64,
 }
 
 impl Default for TimingSpec {
@@ -374,6 +385,8 @@ impl Default for TimingSpec {
             zone_radius: 30.0,
             pace: [1.0, 1.0],
             max_delay: 0.0,
+            launch_interval: 0.0,
+            recovery_interval: 0.0,
         }
     }
 }

@@ -87,6 +87,9 @@ fn non_negative(field: &str, v: f64) -> Result<(), SpecError> {
     }
 }
 
+/// Longest launch or recovery interval, seconds.
+pub const MAX_SLOT_INTERVAL_S: f64 = 600.0;
+
 /// Most samples one segment (or one link) is checked at; see the module's table.
 pub const MAX_SAMPLES_PER_SEGMENT: f64 = 10_000.0;
 /// Smallest communication time step, seconds: the channel table then has at most
@@ -457,6 +460,25 @@ impl ScenarioSpec {
                     super::spec::MAX_DELAY_LIMIT
                 ),
                 t.max_delay,
+            ));
+        }
+        for (field, v) in [
+            ("timing.launch_interval", t.launch_interval),
+            ("timing.recovery_interval", t.recovery_interval),
+        ] {
+            if !(v.is_finite() && (0.0..=MAX_SLOT_INTERVAL_S).contains(&v)) {
+                return Err(err(
+                    field,
+                    format!("seconds in [0, {MAX_SLOT_INTERVAL_S}] (0: everyone at once)"),
+                    v,
+                ));
+            }
+        }
+        if t.recovery_interval > 0.0 && t.policy != super::spec::TimingPolicy::CommonArrival {
+            return Err(err(
+                "timing.recovery_interval",
+                "0 under policy `cruise` (recovery slots are offsets from the common arrival time; use policy = \"common-arrival\")",
+                t.recovery_interval,
             ));
         }
         if self.planning.waypoints == 0 || self.planning.waypoints > 1000 {

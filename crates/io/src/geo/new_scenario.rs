@@ -8,7 +8,8 @@
 //! UAVs at the start; no threats, interference windows or extra ground nodes (they were
 //! placed for the paper's map); the communication range and battery scaled by the
 //! start-goal distance over the paper's (922 m; the battery never below the paper's); and
-//! the geodetic origin of local (0, 0) as `[geo] origin`.
+//! the geodetic origin of local (0, 0) as `[geo] origin`; launch and recovery slots 5 s
+//! apart (the fleet shares its start and UGV0; docs/model.md, "Launch and recovery slots").
 
 use std::path::Path;
 
@@ -269,6 +270,9 @@ fn fit_template(
     spec.communication.range *= ratio;
     spec.communication.interference.clear();
     spec.communication.ground_nodes.clear();
+    // Every UAV starts at one place and lands at UGV0: launch and recover them in turn.
+    spec.timing.launch_interval = crate::generate::SLOT_INTERVAL_S;
+    spec.timing.recovery_interval = crate::generate::SLOT_INTERVAL_S;
     Ok(spec)
 }
 

@@ -1,0 +1,71 @@
+//! Launch and recovery slots: a fleet that shares a take-off place leaves it one UAV after
+//! another, and UGV0 takes its UAVs back one at a time (docs/model.md, "Launch and recovery
+//! slots"; not in the paper, which launches and recovers everyone at once).
+//!
+//! Why: under the paper's simultaneous departure and common arrival, five UAVs that share a
+//! start must fan out through the take-off zone's edge at the same moment, 19 deg apart on
+//! a 30 m circle, and a hundred reach UGV0's landing zone together, a few metres apart on
+//! its edge: separation cannot hold however the paths are drawn. An operator launches from
+//! one place in turn and recovers in turn, so the model does.
+//!
+//! Which UAVs share a take-off place: UAV i joins the group of the first earlier UAV whose
+//! start lies within `timing.zone_radius` of its own (horizontally), and its launch slot is
+//! its rank in that group times `timing.launch_interval`. Every UAV lands at UGV0, so its
+//! recovery slot is its index times `timing.recovery_interval`: UAV 0 lands first. Both
+//! intervals default to 0 (everyone at once: the paper's layout, bit for bit).
+
+use super::spec::ScenarioSpec;
+
+/// Each UAV's launch and recovery offsets, seconds.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Slots {
+    launch: Vec<f64>,
+    recovery: Vec<f64>,
+}
+
+impl Slots {
+    /// The slots `spec`'s timing asks for (all 0 when both intervals are 0).
+    #[must_use]
+    pub fn of(spec: &ScenarioSpec) -> Self {
+        let t = &spec.timing;
+        let n = spec.uavs.len();
+        let mut launch = vec![0.0; n];
+        if t.launch_interval > 0.0 {
+            // group[i]: the first UAV of i's group; rank within it counted as we go.
+            let mut group = vec![0usize; n];
+            let mut members = vec![0usize; n];
+            for i in 0..n {
+                let [xi, yi, _] = spec.uavs[i].start;
+                let first = (0..i)
+                    .find(|&j| {
+                        let [xj, yj, _] = spec.uavs[j].start;
+                        group[j] == j && (xi - xj).hypot(yi - yj) <= t.zone_radius
+                    })
+                    .unwrap_or(i);
+                group[i] = first;
+                launch[i] = members[first] as f64 * t.launch_interval;
+                members[first] += 1;
+            }
+        }
+        let recovery = (0..n).map(|i| i as f64 * t.recovery_interval).collect();
+        Self { launch, recovery }
+    }
+
+    /// Seconds after the mission's start at which UAV `u` may leave its start.
+    #[must_use]
+    pub fn launch(&self, u: usize) -> f64 {
+        self.launch.get(u).copied().unwrap_or(0.0)
+    }
+
+    /// Seconds after the fleet's common arrival time T at which UAV `u` lands.
+    #[must_use]
+    pub fn recovery(&self, u: usize) -> f64 {
+        self.recovery.get(u).copied().unwrap_or(0.0)
+    }
+
+    /// Whether any UAV has a slot other than 0.
+    #[must_use]
+    pub fn any(&self) -> bool {
+        self.launch.iter().chain(&self.recovery).any(|&s| s > 0.0)
+    }
+}
