@@ -412,6 +412,12 @@ fn scenario_generate_writes_a_scenario_that_plans() {
     assert!(text.starts_with("# swarmplan scenario generate --seed 4 --uavs 8 --threats 12"));
     assert_eq!(text.matches("[[uavs]]").count(), 8);
     assert_eq!(text.matches("[[threats]]").count(), 12);
+    // Launch and recovery slots by default (a mission an operator could fly).
+    assert!(
+        text.contains("launch_interval = 5.0") && text.contains("recovery_interval = 5.0"),
+        "{text}"
+    );
+    assert!(text.contains("name = \"gen-s4-u8-t12-slots\""), "{text}");
     // The same flags give the same file.
     let again = swarmplan()
         .args([
@@ -441,7 +447,29 @@ fn scenario_generate_writes_a_scenario_that_plans() {
         .arg("--out")
         .arg(dir.path().join("p"))
         .assert()
-        .success();
+        .success()
+        .stdout(predicates::str::contains(
+            "take-off and landing (launch slots 5 s, recovery slots 5 s apart): uav 0 0.0-",
+        ));
+    // --no-slots: everyone at once, the paper's layout, and the suites' name.
+    swarmplan()
+        .args([
+            "scenario",
+            "generate",
+            "--seed",
+            "4",
+            "--uavs",
+            "8",
+            "--threats",
+            "12",
+            "--no-slots",
+        ])
+        .assert()
+        .success()
+        .stdout(
+            predicates::str::contains("name = \"gen-s4-u8-t12\"")
+                .and(predicates::str::contains("launch_interval").not()),
+        );
     swarmplan()
         .args([
             "scenario",

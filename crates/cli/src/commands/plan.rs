@@ -493,17 +493,25 @@ fn print_summary(args: &PlanArgs, world: &World, attempts: &Attempts, written: &
     }
     if world.slots().any() {
         let timed = swarmplan_core::timing::TimedPlan::flown(world, &result.plan);
-        let slots: Vec<String> = timed
-            .paths
-            .iter()
-            .enumerate()
-            .map(|(u, p)| format!("uav {u} {:.1}-{:.1} s", p.launch, p.arrival))
-            .collect();
+        let line = |u: usize| {
+            let p = &timed.paths[u];
+            format!("uav {u} {:.1}-{:.1} s", p.launch, p.arrival)
+        };
+        // A long fleet: the first two and the last, the rest in plan.json's times.
+        let n = timed.paths.len();
+        let shown = if n <= 8 {
+            (0..n).map(line).collect::<Vec<_>>().join(", ")
+        } else {
+            format!(
+                "{}, {}, ..., {} (every UAV's times in plan.json)",
+                line(0),
+                line(1),
+                line(n - 1)
+            )
+        };
         println!(
-            "take-off and landing (launch slots {} s, recovery slots {} s apart): {}",
-            timing.launch_interval,
-            timing.recovery_interval,
-            slots.join(", ")
+            "take-off and landing (launch slots {} s, recovery slots {} s apart): {shown}",
+            timing.launch_interval, timing.recovery_interval,
         );
     }
     if timing.delay_is_free() {
