@@ -19,7 +19,7 @@ pub const GENERATED_WINDOWS: usize = 1;
 pub const GENERATED_SIZES: [usize; 3] = [8, 12, 20];
 
 /// A suite's name and what it holds, for `--help` and errors.
-pub const SUITES: [(&str, &str); 18] = [
+pub const SUITES: [(&str, &str); 21] = [
     ("paper", "paper-case1 and paper-case2"),
     (
         "outside",
@@ -31,6 +31,10 @@ pub const SUITES: [(&str, &str); 18] = [
     ),
     ("outside-u1", "the same with one UAV (outside-K-u1)"),
     (
+        "outside-u1-nocomm",
+        "one UAV with communication off (outside-K-u1-nocomm): the route alone",
+    ),
+    (
         "outside-slots",
         "the same with launch and recovery slots 5 s apart (outside-K-slots; -delay-slots: both)",
     ),
@@ -40,6 +44,10 @@ pub const SUITES: [(&str, &str); 18] = [
     ),
     ("outside-dev-delay", "the same with departure delays free"),
     ("outside-dev-u1", "the same with one UAV"),
+    (
+        "outside-dev-u1-nocomm",
+        "the same with one UAV, communication off",
+    ),
     ("outside-dev-slots", "the same with slots"),
     (
         "outside-dev-delay-slots",
@@ -51,6 +59,10 @@ pub const SUITES: [(&str, &str); 18] = [
     ),
     ("outside-held-delay", "the same with departure delays free"),
     ("outside-held-u1", "the same with one UAV"),
+    (
+        "outside-held-u1-nocomm",
+        "the same with one UAV, communication off",
+    ),
     ("outside-held-slots", "the same with slots"),
     (
         "generated-8",
@@ -82,6 +94,7 @@ fn outside(name: &str) -> Option<Vec<String>> {
         "-u1" => "-u1",
         "-slots" => "-slots",
         "-delay-slots" => "-delay-slots",
+        "-u1-nocomm" => "-u1-nocomm",
         _ => return None,
     };
     Some(

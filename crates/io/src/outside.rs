@@ -29,6 +29,8 @@
 //! `outside-K[-uN][-delay]-slots` adds launch and recovery slots
 //! ([`crate::generate::SLOT_INTERVAL_S`] apart; docs/model.md, "Launch and recovery slots"):
 //! the fleet shares its start, so it takes off in turn, and UGV0 recovers it in turn.
+//! `...-nocomm` turns communication off (`requirement = "none"`), to judge the route alone
+//! (issue 46: one UAV with communication off is feasible wherever a route exists).
 
 use std::path::{Path, PathBuf};
 
@@ -121,11 +123,19 @@ pub struct OutsideName {
     pub delay: bool,
     /// Launch and recovery slots (`-slots`).
     pub slots: bool,
+    /// Communication off (`-nocomm`: `communication.requirement = "none"`), to judge the
+    /// route alone.
+    pub no_comm: bool,
 }
 
-/// The scenario name `outside-K[-uN][-delay][-slots]` as what it asks for, or `None`.
+/// The scenario name `outside-K[-uN][-delay][-slots][-nocomm]` as what it asks for, or
+/// `None`.
 #[must_use]
 pub fn parse_name(name: &str) -> Option<OutsideName> {
+    let (name, no_comm) = match name.strip_suffix("-nocomm") {
+        Some(base) => (base, true),
+        None => (name, false),
+    };
     let (name, slots) = match name.strip_suffix("-slots") {
         Some(base) => (base, true),
         None => (name, false),
@@ -158,6 +168,7 @@ pub fn parse_name(name: &str) -> Option<OutsideName> {
         uavs: n,
         delay,
         slots,
+        no_comm,
     })
 }
 
@@ -186,6 +197,9 @@ pub fn load_named(name: &str) -> Option<Result<ScenarioSpec, OutsideError>> {
             if asked.slots {
                 spec.timing.launch_interval = crate::generate::SLOT_INTERVAL_S;
                 spec.timing.recovery_interval = crate::generate::SLOT_INTERVAL_S;
+            }
+            if asked.no_comm {
+                spec.communication.requirement = swarmplan_core::world::spec::CommRequirement::None;
             }
             spec
         }),
@@ -279,6 +293,7 @@ mod tests {
                 uavs: 5,
                 delay: false,
                 slots: false,
+                no_comm: false,
             })
         );
         assert_eq!(
@@ -288,6 +303,7 @@ mod tests {
                 uavs: 12,
                 delay: false,
                 slots: false,
+                no_comm: false,
             })
         );
         assert_eq!(
@@ -297,6 +313,7 @@ mod tests {
                 uavs: 5,
                 delay: true,
                 slots: false,
+                no_comm: false,
             })
         );
         assert_eq!(
@@ -306,6 +323,7 @@ mod tests {
                 uavs: 8,
                 delay: true,
                 slots: false,
+                no_comm: false,
             })
         );
         assert_eq!(
@@ -315,9 +333,15 @@ mod tests {
                 uavs: 8,
                 delay: true,
                 slots: true,
+                no_comm: false,
             })
         );
+        assert_eq!(
+            parse_name("outside-2-u1-nocomm").map(|n| (n.uavs, n.no_comm)),
+            Some((1, true))
+        );
         for bad in [
+            "outside-1-nocomm-u1",
             "outside-1-slots-delay",
             "outside-1-slots-slots",
             "outside-slots",
