@@ -8,7 +8,7 @@ use std::time::Instant;
 use serde::{Deserialize, Serialize};
 
 use crate::cost::Assessment;
-use crate::encoding::init::{InitKind, LINE_CORRIDOR_GIVE_UP};
+use crate::encoding::init::{line_corridor_give_up, InitKind};
 use crate::method::Method;
 use crate::optim::thinned::Thinned;
 use crate::optim::{
@@ -80,7 +80,7 @@ fn search(
 type StageObserver<'a> = dyn FnMut(&IterationRecord, &[f64], &PlanningProblem) + 'a;
 
 /// The search of `req`, staged for the `line-corridor` start: the line run, given up when it
-/// is still far from feasible at half its evaluation budget ([`LINE_CORRIDOR_GIVE_UP`]),
+/// is still far from feasible at half its evaluation budget ([`line_corridor_give_up`]),
 /// then a corridor run with the evaluations left, the same generator going on; the better
 /// of the two by Deb's rules is kept, with the problem that decodes it. Records of the
 /// second stage count on from the first's evaluations and iterations. Any other start is
@@ -97,7 +97,7 @@ fn staged_search<'w>(
     if let (true, Some(total)) = (staged, budget.evaluations) {
         budget.give_up = Some(GiveUp {
             after_evaluations: total / 2,
-            above_violation: LINE_CORRIDOR_GIVE_UP,
+            above_violation: line_corridor_give_up(world.uav_count()),
         });
     }
     let outcome = search(&first, req, budget, &mut rng, &mut |r, x| {
