@@ -42,7 +42,7 @@ fuzz_target!(|data: &[u8]| {
         parse_geojson(text, "fuzz.geojson", world(), frame())
     };
     if let Ok(plan) = plan {
-        let a = assess(world(), &plan, true);
+        let a = assess(world(), &plan);
         assert!(!a.total.is_nan(), "a NaN cost");
     }
 });

@@ -21,7 +21,7 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     if let Ok(plan) = parse_plan(text, "fuzz.json", world(), Provenance::AllowOther) {
-        let a = assess(world(), &plan, true);
+        let a = assess(world(), &plan);
         assert!(!a.total.is_nan(), "a NaN cost");
     }
 });

@@ -57,8 +57,11 @@ pub fn plan(
         time_limit_s: time_limit,
         until_feasible,
     };
-    let Resolved { budget, params } =
+    // time_limit counts from here: loading, the route layer's checks and the search.
+    let began = std::time::Instant::now();
+    let Resolved { mut budget, params } =
         args::run_settings(&settings, method.optimizer.default_budget())?;
+    budget.started = Some(began);
     let loaded = scenario::load(scenario, terrain, profile)?;
     let world = &loaded.world;
     let req = RunRequest {

@@ -126,20 +126,18 @@ pub fn run_attempts(
     done: &mut dyn FnMut(&AttemptRecord),
 ) -> Attempts {
     let attempts = attempts.clamp(1, MAX_ATTEMPTS);
-    let start = Instant::now();
+    let start = req.budget.started.unwrap_or_else(Instant::now);
     let mut best: Option<(RunResult, UavTrace, AttemptRecord)> = None;
     let mut records = Vec::new();
     for attempt in 1..=attempts {
         let mut r = req.clone();
         r.seed = attempt_seed(req.seed, attempt);
+        // One clock for every attempt: the limit bounds them together.
+        r.budget.started = Some(start);
         if let Some(total) = req.budget.time_limit_ms {
-            // Truncation intended: whole milliseconds of time left.
-            #[allow(clippy::cast_possible_truncation)]
-            let used = start.elapsed().as_millis() as u64;
-            if attempt > 1 && used >= total {
+            if attempt > 1 && start.elapsed().as_millis() >= u128::from(total) {
                 break;
             }
-            r.budget.time_limit_ms = Some(total.saturating_sub(used).max(1));
         }
         let (result, trace) = run_with_uav_trace(world, &r, &mut |rec| progress(attempt, rec));
         let record = AttemptRecord::of(attempt, &result);

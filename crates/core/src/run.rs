@@ -91,9 +91,13 @@ fn staged_search<'w>(
     observer: &mut StageObserver<'_>,
 ) -> (PlanningProblem<'w>, Outcome) {
     let mut rng = rng_from_seed(req.seed);
+    // One clock for the time limit over both stages and the problems' set-up (the
+    // corridor's route search).
+    let started = Some(req.budget.started.unwrap_or_else(Instant::now));
     let first = PlanningProblem::new(world, req.method.encoding, req.method.init);
     let staged = req.method.init == InitKind::LineCorridor;
     let mut budget = req.budget;
+    budget.started = started;
     if let (true, Some(total)) = (staged, budget.evaluations) {
         budget.give_up = Some(GiveUp {
             after_evaluations: total / 2,
@@ -108,6 +112,7 @@ fn staged_search<'w>(
     }
     let second = PlanningProblem::new(world, req.method.encoding, InitKind::Corridor);
     let mut rest = req.budget;
+    rest.started = started;
     rest.evaluations = req
         .budget
         .evaluations

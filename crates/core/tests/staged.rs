@@ -67,3 +67,27 @@ fn a_run_far_from_feasible_at_half_budget_goes_on_from_the_corridor() {
     assert_eq!(again.outcome.best_x, staged.outcome.best_x);
     assert_eq!(again.outcome.trace, staged.outcome.trace);
 }
+
+#[test]
+fn the_time_limit_runs_on_one_clock_from_when_the_budget_says_it_started() {
+    use std::time::{Duration, Instant};
+    let w = world("paper-case2");
+    let mut req = request(InitKind::LineCorridor, 400);
+    // A clock started two seconds ago with a one-second limit: no iteration runs, in either
+    // stage, whatever is left of the evaluations.
+    req.budget.time_limit_ms = Some(1000);
+    req.budget.started = Some(Instant::now().checked_sub(Duration::from_secs(2)).unwrap());
+    let out = run(&w, &req, &mut |_| {});
+    assert_eq!(out.outcome.termination, Termination::TimeLimit);
+    assert_eq!(out.outcome.iterations, 0, "{:?}", out.outcome.trace);
+    // Without a start the clock starts with the search: the same request runs to its end.
+    req.budget.started = None;
+    req.budget.time_limit_ms = Some(600_000);
+    let out = run(&w, &req, &mut |_| {});
+    assert_eq!(out.outcome.termination, Termination::MaxEvaluations);
+    // Attempts share one clock too: a spent limit stops after the first attempt.
+    req.budget.time_limit_ms = Some(1000);
+    req.budget.started = Some(Instant::now().checked_sub(Duration::from_secs(2)).unwrap());
+    let attempts = swarmplan_core::attempts::run_attempts(&w, &req, 3, &mut |_, _| {}, &mut |_| {});
+    assert_eq!(attempts.records.len(), 1);
+}

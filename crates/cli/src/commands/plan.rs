@@ -68,8 +68,9 @@ pub struct PlanArgs {
     /// Replace the plan already in --out (default: keep it and write to out-2, out-3, ...).
     #[arg(long)]
     pub force: bool,
-    /// Stop after this many seconds of search, with the best plan so far (anytime
-    /// planning; a run stopped by the clock is not reproducible, and says so).
+    /// Stop after this many seconds, counted from the command's start (loading, the route
+    /// layer's checks and the search), with the best plan so far (anytime planning; a run
+    /// stopped by the clock is not reproducible, and says so).
     #[arg(long, value_name = "SECONDS", allow_hyphen_values = true)]
     pub time_limit: Option<f64>,
     /// Stop at the first feasible plan instead of improving it within the budget.
@@ -235,8 +236,10 @@ struct Written {
 }
 
 pub fn run_command(args: &PlanArgs) -> Result<()> {
+    // --time-limit counts from here: loading, the route layer's checks and the search.
+    let began = std::time::Instant::now();
     let world = super::load_world(&args.scenario)?;
-    let prepared = prepare(args, &world)?;
+    let prepared = prepare(args, &world, began)?;
     if !args.json {
         eprintln!("{}", announcement(args, &world, &prepared.req));
     }
@@ -275,7 +278,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
 
 /// Checks every argument, makes the request and the worker pool, then settles the output
 /// folder (last, so a bad argument leaves no `out-2`).
-fn prepare(args: &PlanArgs, world: &World) -> Result<Prepared> {
+fn prepare(args: &PlanArgs, world: &World, began: std::time::Instant) -> Result<Prepared> {
     let resolved = args
         .settings
         .run_settings(args.time_limit, args.until_feasible)
@@ -297,7 +300,10 @@ fn prepare(args: &PlanArgs, world: &World) -> Result<Prepared> {
     let req = RunRequest {
         method: args.method.with(args.encoding, args.init),
         params: resolved.params,
-        budget: resolved.budget,
+        budget: swarmplan_core::optim::Budget {
+            started: Some(began),
+            ..resolved.budget
+        },
         seed: args.seed.unwrap_or(world.spec().planning.seed),
     };
     let cores = workers::cores();

@@ -47,6 +47,11 @@ pub struct Budget {
     /// A flag that stops the run between iterations ([`super::cancel`]; none).
     #[serde(skip)]
     pub cancel: super::cancel::Cancel,
+    /// When the wall-clock limit's clock started (none: when the search's iterations
+    /// start). A command sets it when it begins, so that loading the scenario, the route
+    /// layer's searches, both stages of a staged run and every attempt count in one limit.
+    #[serde(skip)]
+    pub started: Option<std::time::Instant>,
 }
 
 /// When a run is given up ([`Budget::give_up`]).
@@ -73,6 +78,7 @@ impl Budget {
             until_feasible: false,
             give_up: None,
             cancel: super::cancel::Cancel::NONE,
+            started: None,
         }
     }
 
@@ -227,7 +233,7 @@ pub fn solve_watching(
     };
     emit(0, &ev, optimizer);
 
-    let started = std::time::Instant::now();
+    let started = budget.started.unwrap_or_else(std::time::Instant::now);
     let mut iteration = 0;
     let termination = loop {
         if budget.until_feasible && optimizer.best().1.feasible() {
