@@ -92,6 +92,10 @@ def ompl_path(
     simplifier = setup.getPathSimplifier()
     path = setup.getSolutionPath()
     simplifier.simplify(path, 0.5 * seconds)
+    # Written as simplified: swarmplan interpolates absolute altitudes between waypoints
+    # where OMPL's motions hold the height above ground, so a long segment can cut into a
+    # hill. States every 25 m instead follow the terrain and break the climb limit on these
+    # rugged maps (0 of 54 development runs feasible, against 5 of 54 as simplified).
     return [[path.getState(i)[k] for k in range(3)] for i in range(path.getStateCount())]
 
 
