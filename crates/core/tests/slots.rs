@@ -219,8 +219,17 @@ fn slots_make_ten_uavs_through_one_gap_feasible_for_the_planner() {
     let slotted = gap(5.0, 5.0);
     let a = run(&slotted, &req, &mut |_| {});
     assert!(a.assessment.feasible(), "{:?}", a.assessment.violations);
-    // Deterministic per seed.
+    // Deterministic per seed, on one thread or three.
     assert_eq!(a.plan, run(&slotted, &req, &mut |_| {}).plan);
+    for threads in [1, 3] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let b = pool.install(|| run(&slotted, &req, &mut |_| {}));
+        assert_eq!(a.outcome.best_x, b.outcome.best_x, "{threads} threads");
+        assert_eq!(a.outcome.trace, b.outcome.trace, "{threads} threads");
+    }
     // Without slots the same search, at the same budget, is not (as measured: separation).
     let together = run(&gap(0.0, 0.0), &req, &mut |_| {});
     assert!(
