@@ -11,9 +11,8 @@
 //!
 //! Both UAVs move linearly between the merged times of their waypoints, so on each such
 //! interval the relative position is r0 + w tau: the closest approach is exact, and so is
-//! the integral, int dtau / (a tau^2 + b tau + c) = (2 / sqrt(D)) atan((2 a tau + b) / sqrt(D))
-//! with D = 4ac - b^2 > 0 (eps > 0). Intervals where the pair stays beyond 50 m use
-//! Simpson's rule instead (their integrand is below 1/2500 per second and smooth). A UAV is exempt from
+//! the integral on every interval ([`interval_integral`]; until issue 47 intervals beyond
+//! 50 m took Simpson's rule, up to 12 % high). A UAV is exempt from
 //! take-off until it first leaves the start zone and from landing once it last enters the
 //! goal zone; a path that comes back into the start zone later is checked there (stricter).
 //! A UAV with a departure delay hovers at its start until it leaves (a leading segment of
@@ -28,11 +27,6 @@ use crate::timing::{TimedPath, TimedPlan};
 use crate::world::spec::TimingPolicy;
 use crate::world::threat::Threat;
 use crate::world::World;
-
-/// Beyond this closest approach (m) the Eq. 8 integral of an interval uses Simpson's rule:
-/// the integrand is then below 1/2500 and smooth, and an `atan` pair costs more than three
-/// evaluations of it.
-const FAR: f64 = 50.0;
 
 /// Reusable buffers of the proximity sweep, and its memo of pair results.
 #[derive(Debug, Clone, Default)]
@@ -381,12 +375,7 @@ fn sweep_pair(a: &Motion, b: &Motion, eps: f64, sep: f64, out: &mut PairResult) 
             0.0
         };
         let dmin2 = (qa * tau + qb) * tau + qc;
-        integral += if dmin2 > FAR * FAR {
-            let g = |tau: f64| 1.0 / ((qa * tau + qb) * tau + qc + eps);
-            dt / 6.0 * (g(0.0) + 4.0 * g(0.5 * dt) + g(dt))
-        } else {
-            interval_integral(qa, qb, qc + eps, dt)
-        };
+        integral += interval_integral(r0, w, eps, dt);
         if dmin2 < sep * sep {
             let d = dmin2.max(0.0).sqrt();
             let at = pa.lerp(pb, 0.5) + (va + vb) * (0.5 * tau);
@@ -404,25 +393,25 @@ fn sweep_pair(a: &Motion, b: &Motion, eps: f64, sep: f64, out: &mut PairResult) 
     out.integral = integral;
 }
 
-/// int_0^dt dtau / (a tau^2 + b tau + c), for a >= 0, c > 0, b^2 <= 4ac.
+/// The Eq. 8 integral of one interval, int_0^dt dtau / (|r0 + w tau|^2 + eps), exactly.
 ///
-/// (2 / sqrt D) (atan x1 - atan x0) with x = (2 a tau + b) / sqrt D, taken as one
-/// arctangent, atan((x1 - x0) / (1 + x0 x1)), which holds while x0 x1 > -1 (else the
-/// difference of two).
-fn interval_integral(a: f64, b: f64, c: f64, dt: f64) -> f64 {
+/// With a = |w|^2, b = 2 r0 . w, c = |r0|^2 + eps the antiderivative is
+/// (2 / sqrt D) atan((2 a tau + b) / sqrt D), D = 4 a c - b^2; the difference of its two ends
+/// is one arctangent, (2 / sqrt D) atan2(dt sqrt D, 2 c + b dt) (the angle lies in (0, pi):
+/// atan2 adds the pi a plain atan would miss when 2 c + b dt < 0). D is taken as
+/// 4 (|w x r0|^2 + eps |w|^2), equal to 4ac - b^2 but free of its cancellation. One square
+/// root, one division and one arctangent per interval (issue 47). A pair at rest relative to
+/// each other (a <= 1e-12) gives dt / c.
+fn interval_integral(r0: DVec3, w: DVec3, eps: f64, dt: f64) -> f64 {
+    let a = w.length_squared();
+    let c = r0.length_squared() + eps;
     if a <= 1e-12 {
         return dt / c;
     }
-    let disc = (4.0 * a * c - b * b).max(1e-300);
-    let root = disc.sqrt();
-    let (x0, x1) = (b / root, (2.0 * a * dt + b) / root);
-    let denominator = 1.0 + x0 * x1;
-    let difference = if denominator > 0.0 {
-        ((x1 - x0) / denominator).atan()
-    } else {
-        x1.atan() - x0.atan()
-    };
-    2.0 / root * difference
+    let b = 2.0 * r0.dot(w);
+    let d = (4.0 * (w.cross(r0).length_squared() + eps * a)).max(1e-300);
+    let root = d.sqrt();
+    2.0 / root * (dt * root).atan2(2.0 * c + b * dt)
 }
 
 /// Calls `f(t0, dt, pa, pb, va, vb)` for each interval of [from, to] on which both UAVs move
@@ -499,27 +488,97 @@ fn report(sink: &mut ViolationSink, i: usize, j: usize, sep: f64, (d, t, p): (f6
 mod tests {
     use super::*;
 
+    /// The slow reference: adaptive Simpson quadrature of 1 / (|r0 + w tau|^2 + eps) on
+    /// [0, dt] to a relative tolerance far below the checks'.
+    fn reference(r0: DVec3, w: DVec3, eps: f64, dt: f64) -> f64 {
+        fn simpson(f: &dyn Fn(f64) -> f64, a: f64, b: f64, fa: f64, fm: f64, fb: f64) -> f64 {
+            (b - a) / 6.0 * (fa + 4.0 * fm + fb)
+        }
+        #[allow(clippy::too_many_arguments)]
+        fn adapt(
+            f: &dyn Fn(f64) -> f64,
+            a: f64,
+            b: f64,
+            fa: f64,
+            fm: f64,
+            fb: f64,
+            whole: f64,
+            tol: f64,
+            depth: u32,
+        ) -> f64 {
+            let m = 0.5 * (a + b);
+            let (lm, rm) = (f(0.5 * (a + m)), f(0.5 * (m + b)));
+            let (left, right) = (simpson(f, a, m, fa, lm, fm), simpson(f, m, b, fm, rm, fb));
+            if depth == 0 || (left + right - whole).abs() <= 15.0 * tol {
+                left + right + (left + right - whole) / 15.0
+            } else {
+                adapt(f, a, m, fa, lm, fm, left, 0.5 * tol, depth - 1)
+                    + adapt(f, m, b, fm, rm, fb, right, 0.5 * tol, depth - 1)
+            }
+        }
+        let f = |tau: f64| 1.0 / ((r0 + w * tau).length_squared() + eps);
+        let (fa, fm, fb) = (f(0.0), f(0.5 * dt), f(dt));
+        let whole = simpson(&f, 0.0, dt, fa, fm, fb);
+        adapt(
+            &f,
+            0.0,
+            dt,
+            fa,
+            fm,
+            fb,
+            whole,
+            1e-12 * whole.abs().max(1e-300),
+            50,
+        )
+    }
+
     #[test]
-    fn closed_form_integral_matches_quadrature() {
-        for (a, b, c, dt) in [
-            (4.0, -30.0, 100.0, 10.0),
-            (0.0, 0.0, 5.0, 3.0),
-            (1.0, 2.0, 2.0, 7.5),
-            // Passing the closest approach mid-interval (x0 x1 < -1: two arctangents).
-            (100.0, -2000.0, 10_001.0, 20.0),
-        ] {
-            let n = 200_000;
-            let h = dt / n as f64;
-            let q: f64 = (0..n)
-                .map(|k| {
-                    let t = (k as f64 + 0.5) * h;
-                    h / (a * t * t + b * t + c)
-                })
-                .sum();
+    fn closed_form_integral_matches_the_slow_reference_within_1e_9() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(47);
+        let mut v = |rng: &mut rand_chacha::ChaCha8Rng, s: f64| {
+            DVec3::new(
+                rng.random_range(-s..s),
+                rng.random_range(-s..s),
+                rng.random_range(-s..s),
+            )
+        };
+        for k in 0..600 {
+            // Near and far pairs, slow and fast, short and long intervals.
+            let scale = [5.0, 50.0, 500.0][k % 3];
+            let r0 = v(&mut rng, scale);
+            let w = v(&mut rng, [0.5, 20.0, 40.0][(k / 3) % 3]);
+            let eps = [1.0, 0.01, 25.0][(k / 9) % 3];
+            let dt = rng.random_range(0.01..30.0);
+            let got = interval_integral(r0, w, eps, dt);
+            let want = reference(r0, w, eps, dt);
             assert!(
-                (interval_integral(a, b, c, dt) - q).abs() < 1e-6 * q.max(1.0),
-                "{a} {b} {c}"
+                (got - want).abs() <= 1e-9 * want,
+                "r0 {r0} w {w} eps {eps} dt {dt}: {got} against {want}"
             );
         }
+        // Crossing the closest approach mid-interval (2c + b dt < 0), and at rest.
+        for (r0, w) in [
+            (DVec3::new(-100.0, 0.5, 0.0), DVec3::new(10.0, 0.0, 0.0)),
+            (DVec3::new(3.0, 4.0, 0.0), DVec3::ZERO),
+        ] {
+            let (got, want) = (
+                interval_integral(r0, w, 1.0, 20.0),
+                reference(r0, w, 1.0, 20.0),
+            );
+            assert!((got - want).abs() <= 1e-9 * want, "{got} {want}");
+        }
+    }
+
+    #[test]
+    fn a_far_interval_is_exact_where_simpson_was_twelve_percent_high() {
+        // Issue 47's example: dt = 7 s, relative speed 20 m/s, closest approach 55 m at
+        // mid-interval, eps = 1: exact 1.645e-3; three-point Simpson gave 1.837e-3.
+        let (r0, w) = (DVec3::new(-70.0, 55.0, 0.0), DVec3::new(20.0, 0.0, 0.0));
+        let got = interval_integral(r0, w, 1.0, 7.0);
+        assert!((got - 1.645e-3).abs() < 5e-7, "{got}");
+        let g = |t: f64| 1.0 / ((r0 + w * t).length_squared() + 1.0);
+        let simpson = 7.0 / 6.0 * (g(0.0) + 4.0 * g(3.5) + g(7.0));
+        assert!((simpson - 1.837e-3).abs() < 5e-7, "{simpson}");
     }
 }
