@@ -11,7 +11,7 @@
 //!
 //! Both UAVs move linearly between the merged times of their waypoints, so on each such
 //! interval the relative position is r0 + w tau: the closest approach is exact, and so is
-//! the integral on every interval ([`interval_integral`]; until issue 47 intervals beyond
+//! the integral on every interval (`interval_integral`; until issue 47 intervals beyond
 //! 50 m took Simpson's rule, up to 12 % high). A UAV is exempt from
 //! take-off until it first leaves the start zone and from landing once it last enters the
 //! goal zone; a path that comes back into the start zone later is checked there (stricter).
