@@ -397,8 +397,9 @@ fn sweep_pair(a: &Motion, b: &Motion, eps: f64, sep: f64, out: &mut PairResult) 
 ///
 /// With a = |w|^2, b = 2 r0 . w, c = |r0|^2 + eps the antiderivative is
 /// (2 / sqrt D) atan((2 a tau + b) / sqrt D), D = 4 a c - b^2; the difference of its two ends
-/// is one arctangent, (2 / sqrt D) atan2(dt sqrt D, 2 c + b dt) (the angle lies in (0, pi):
-/// atan2 adds the pi a plain atan would miss when 2 c + b dt < 0). D is taken as
+/// is one arctangent, (2 / sqrt D) atan(dt sqrt D / (2 c + b dt)), plus pi when the
+/// denominator is negative (the angle lies in (0, pi)); `atan` of the ratio measured 5 %
+/// faster on a whole `plan` than `atan2` (docs/performance.md). D is taken as
 /// 4 (|w x r0|^2 + eps |w|^2), equal to 4ac - b^2 but free of its cancellation. One square
 /// root, one division and one arctangent per interval (issue 47). A pair at rest relative to
 /// each other (a <= 1e-12) gives dt / c.
@@ -411,7 +412,15 @@ fn interval_integral(r0: DVec3, w: DVec3, eps: f64, dt: f64) -> f64 {
     let b = 2.0 * r0.dot(w);
     let d = (4.0 * (w.cross(r0).length_squared() + eps * a)).max(1e-300);
     let root = d.sqrt();
-    2.0 / root * (dt * root).atan2(2.0 * c + b * dt)
+    let denominator = 2.0 * c + b * dt;
+    let angle = (dt * root / denominator).atan();
+    // The angle lies in (0, pi): past pi / 2 (a negative denominator) atan gives it less pi.
+    let angle = if denominator.is_sign_negative() {
+        angle + std::f64::consts::PI
+    } else {
+        angle
+    };
+    2.0 / root * angle
 }
 
 /// Calls `f(t0, dt, pa, pb, va, vb)` for each interval of [from, to] on which both UAVs move
