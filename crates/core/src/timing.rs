@@ -396,25 +396,13 @@ impl TimedPlan {
     }
 
     /// Moves each UAV's whole flight later to fit the launch and recovery slots
-    /// ([`crate::world::slots`]): its speed, hover and flight time stay those of the schedule
-    /// without slots, and it waits on the launcher (drawing nothing) until it takes off.
-    /// Under cruise UAV i takes off at its launch slot a_i. Under common arrival it lands at
-    /// T + c + b_i (b_i its recovery slot, T the arrival time without slots), where
-    /// c = max(0, max_i (a_i - b_i)) is the least common lag that lets every UAV take off no
-    /// earlier than its launch slot; c depends on the slots alone.
+    /// ([`crate::world::slots::Slots::shift`]): its speed, hover and flight time stay those of
+    /// the schedule without slots, and it waits on the launcher (drawing nothing) until it
+    /// takes off.
     fn shift_into_slots(&mut self, world: &World) {
         let slots = world.slots();
-        let n = self.paths.len();
-        let lag = (0..n)
-            .map(|i| slots.launch(i) - slots.recovery(i))
-            .fold(0.0, f64::max);
-        let common = world.spec().timing.policy == TimingPolicy::CommonArrival;
         for (i, tp) in self.paths.iter_mut().enumerate() {
-            let shift = if common {
-                lag + slots.recovery(i)
-            } else {
-                slots.launch(i)
-            };
+            let shift = slots.shift(i);
             tp.launch = shift;
             tp.depart += shift;
             tp.arrival += shift;

@@ -167,6 +167,16 @@ fn recovery_slots_need_common_arrival_and_intervals_are_checked() {
     let s = spec(&[[100.0, 100.0, 100.0]; 2], -1.0, 0.0);
     let e = World::new(s, Terrain::flat(1000.0, 1000.0, 0.0)).unwrap_err();
     assert!(e.to_string().contains("timing.launch_interval"), "{e}");
+    // Slots must end within half the channel's modelled hour: 400 UAVs 5 s apart do not.
+    let s = spec(&[[100.0, 100.0, 100.0]; 400], 5.0, 5.0);
+    let e = World::new(s, Terrain::flat(1000.0, 1000.0, 0.0)).unwrap_err();
+    assert!(e.to_string().contains("1995 s late"), "{e}");
+    assert!(
+        world(spec(&[[100.0, 100.0, 100.0]; 361], 5.0, 5.0))
+            .slots()
+            .span()
+            == 1800.0
+    );
 }
 
 #[test]

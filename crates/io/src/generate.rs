@@ -65,6 +65,15 @@ pub struct GenerateRequest {
 /// clear of the 30 m take-off zone and of the 10 m separation from the next one.
 pub const SLOT_INTERVAL_S: f64 = 5.0;
 
+/// The slot interval for a fleet of `uavs` sharing one take-off place or UGV0:
+/// [`SLOT_INTERVAL_S`], less for a fleet so large that its slots would end past
+/// [`swarmplan_core::world::slots::MAX_SLOT_SPAN_S`] (1,000 UAVs: 1800 / 999, about 1.8 s).
+#[must_use]
+pub fn slot_interval(uavs: usize) -> f64 {
+    let gaps = uavs.saturating_sub(1).max(1) as f64;
+    SLOT_INTERVAL_S.min(swarmplan_core::world::slots::MAX_SLOT_SPAN_S / gaps)
+}
+
 /// `timing.max_delay` of scenarios with free departure delays (generated with
 /// `--free-delays`, and the outside `-delay` variants): a UAV may wait up to 30 % of the
 /// mission at its start.
@@ -403,8 +412,9 @@ pub fn generate(req: &GenerateRequest) -> Result<ScenarioSpec, GenerateError> {
         spec.timing.max_delay = FREE_MAX_DELAY;
     }
     if req.slots {
-        spec.timing.launch_interval = SLOT_INTERVAL_S;
-        spec.timing.recovery_interval = SLOT_INTERVAL_S;
+        let interval = slot_interval(spec.uavs.len());
+        spec.timing.launch_interval = interval;
+        spec.timing.recovery_interval = interval;
     }
     spec.planning.seed = 1;
     spec.validate().map_err(|e| {
@@ -582,6 +592,8 @@ mod tests {
             if free_delays {
                 assert_eq!(spec.timing.max_delay, FREE_MAX_DELAY, "{name}");
             }
+            assert_eq!(slot_interval(1000), 1800.0 / 999.0);
+            assert_eq!(slot_interval(1), SLOT_INTERVAL_S);
             let slots = [spec.timing.launch_interval, spec.timing.recovery_interval];
             let want = if shared { SLOT_INTERVAL_S } else { 0.0 };
             assert_eq!(slots, [want; 2], "{name}");

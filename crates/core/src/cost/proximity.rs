@@ -375,7 +375,7 @@ fn sweep_pair(a: &Motion, b: &Motion, eps: f64, sep: f64, out: &mut PairResult) 
             0.0
         };
         let dmin2 = (qa * tau + qb) * tau + qc;
-        integral += interval_integral(r0, w, eps, dt);
+        integral += interval_integral(r0, w, (qa, qb, qc + eps), eps, dt);
         if dmin2 < sep * sep {
             let d = dmin2.max(0.0).sqrt();
             let at = pa.lerp(pb, 0.5) + (va + vb) * (0.5 * tau);
@@ -402,14 +402,12 @@ fn sweep_pair(a: &Motion, b: &Motion, eps: f64, sep: f64, out: &mut PairResult) 
 /// faster on a whole `plan` than `atan2` (docs/performance.md). D is taken as
 /// 4 (|w x r0|^2 + eps |w|^2), equal to 4ac - b^2 but free of its cancellation. One square
 /// root, one division and one arctangent per interval (issue 47). A pair at rest relative to
-/// each other (a <= 1e-12) gives dt / c.
-fn interval_integral(r0: DVec3, w: DVec3, eps: f64, dt: f64) -> f64 {
-    let a = w.length_squared();
-    let c = r0.length_squared() + eps;
+/// each other (a <= 1e-12) gives dt / c. The sweep has a, b and c already (its closest
+/// approach), so they are passed in.
+fn interval_integral(r0: DVec3, w: DVec3, (a, b, c): (f64, f64, f64), eps: f64, dt: f64) -> f64 {
     if a <= 1e-12 {
         return dt / c;
     }
-    let b = 2.0 * r0.dot(w);
     let d = (4.0 * (w.cross(r0).length_squared() + eps * a)).max(1e-300);
     let root = d.sqrt();
     let denominator = 2.0 * c + b * dt;
@@ -541,6 +539,16 @@ mod tests {
         )
     }
 
+    /// [`interval_integral`] with its coefficients computed here.
+    fn integral(r0: DVec3, w: DVec3, eps: f64, dt: f64) -> f64 {
+        let q = (
+            w.length_squared(),
+            2.0 * r0.dot(w),
+            r0.length_squared() + eps,
+        );
+        interval_integral(r0, w, q, eps, dt)
+    }
+
     #[test]
     fn closed_form_integral_matches_the_slow_reference_within_1e_9() {
         use rand::{Rng, SeedableRng};
@@ -559,7 +567,7 @@ mod tests {
             let w = v(&mut rng, [0.5, 20.0, 40.0][(k / 3) % 3]);
             let eps = [1.0, 0.01, 25.0][(k / 9) % 3];
             let dt = rng.random_range(0.01..30.0);
-            let got = interval_integral(r0, w, eps, dt);
+            let got = integral(r0, w, eps, dt);
             let want = reference(r0, w, eps, dt);
             assert!(
                 (got - want).abs() <= 1e-9 * want,
@@ -571,10 +579,7 @@ mod tests {
             (DVec3::new(-100.0, 0.5, 0.0), DVec3::new(10.0, 0.0, 0.0)),
             (DVec3::new(3.0, 4.0, 0.0), DVec3::ZERO),
         ] {
-            let (got, want) = (
-                interval_integral(r0, w, 1.0, 20.0),
-                reference(r0, w, 1.0, 20.0),
-            );
+            let (got, want) = (integral(r0, w, 1.0, 20.0), reference(r0, w, 1.0, 20.0));
             assert!((got - want).abs() <= 1e-9 * want, "{got} {want}");
         }
     }
@@ -584,7 +589,7 @@ mod tests {
         // Issue 47's example: dt = 7 s, relative speed 20 m/s, closest approach 55 m at
         // mid-interval, eps = 1: exact 1.645e-3; three-point Simpson gave 1.837e-3.
         let (r0, w) = (DVec3::new(-70.0, 55.0, 0.0), DVec3::new(20.0, 0.0, 0.0));
-        let got = interval_integral(r0, w, 1.0, 7.0);
+        let got = integral(r0, w, 1.0, 7.0);
         assert!((got - 1.645e-3).abs() < 5e-7, "{got}");
         let g = |t: f64| 1.0 / ((r0 + w * t).length_squared() + 1.0);
         let simpson = 7.0 / 6.0 * (g(0.0) + 4.0 * g(3.5) + g(7.0));

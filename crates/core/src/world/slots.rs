@@ -14,13 +14,19 @@
 //! recovery slot is its index times `timing.recovery_interval`: UAV 0 lands first. Both
 //! intervals default to 0 (everyone at once: the paper's layout, bit for bit).
 
-use super::spec::ScenarioSpec;
+use super::spec::{ScenarioSpec, TimingPolicy};
 
-/// Each UAV's launch and recovery offsets, seconds.
+/// Longest span of the slots, seconds: the latest take-off a slot asks for. Half the
+/// channel's modelled [`super::channel::CHANNEL_HORIZON_S`], so a mission and its slots fit
+/// in the channel with 30 minutes left to fly (beyond it the channel would stand still).
+pub const MAX_SLOT_SPAN_S: f64 = 0.5 * super::channel::CHANNEL_HORIZON_S;
+
+/// Each UAV's launch and recovery offsets and how far its flight moves, seconds.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Slots {
     launch: Vec<f64>,
     recovery: Vec<f64>,
+    shift: Vec<f64>,
 }
 
 impl Slots {
@@ -47,8 +53,38 @@ impl Slots {
                 members[first] += 1;
             }
         }
-        let recovery = (0..n).map(|i| i as f64 * t.recovery_interval).collect();
-        Self { launch, recovery }
+        let recovery: Vec<f64> = (0..n).map(|i| i as f64 * t.recovery_interval).collect();
+        // Under common arrival UAV i lands at T + c + b_i, where c = max(0, max_i (a_i - b_i))
+        // is the least common lag that lets every UAV take off no earlier than its launch
+        // slot; under cruise it takes off at its launch slot.
+        let shift = if t.policy == TimingPolicy::CommonArrival {
+            let lag = launch
+                .iter()
+                .zip(&recovery)
+                .map(|(a, b)| a - b)
+                .fold(0.0, f64::max);
+            recovery.iter().map(|b| lag + b).collect()
+        } else {
+            launch.clone()
+        };
+        Self {
+            launch,
+            recovery,
+            shift,
+        }
+    }
+
+    /// How much later than without slots UAV `u`'s whole flight is (it waits that long on
+    /// the launcher).
+    #[must_use]
+    pub fn shift(&self, u: usize) -> f64 {
+        self.shift.get(u).copied().unwrap_or(0.0)
+    }
+
+    /// The latest shift, s: how long the slots stretch the mission.
+    #[must_use]
+    pub fn span(&self) -> f64 {
+        self.shift.iter().copied().fold(0.0, f64::max)
     }
 
     /// Seconds after the mission's start at which UAV `u` may leave its start.

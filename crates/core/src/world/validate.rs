@@ -481,6 +481,20 @@ impl ScenarioSpec {
                 t.recovery_interval,
             ));
         }
+        let span = super::slots::Slots::of(self).span();
+        if span > super::slots::MAX_SLOT_SPAN_S {
+            return Err(err(
+                "timing.launch_interval",
+                format!(
+                    "slots that end within {} s (half the channel's modelled hour, so the flight fits after them): with recovery_interval {} s and these {} UAVs the last takes off {span:.0} s late; take intervals of about {:.2} s",
+                    super::slots::MAX_SLOT_SPAN_S,
+                    t.recovery_interval,
+                    self.uavs.len(),
+                    super::slots::MAX_SLOT_SPAN_S / span * t.launch_interval.max(t.recovery_interval),
+                ),
+                t.launch_interval,
+            ));
+        }
         if self.planning.waypoints == 0 || self.planning.waypoints > 1000 {
             return Err(err(
                 "planning.waypoints",

@@ -271,8 +271,9 @@ fn fit_template(
     spec.communication.interference.clear();
     spec.communication.ground_nodes.clear();
     // Every UAV starts at one place and lands at UGV0: launch and recover them in turn.
-    spec.timing.launch_interval = crate::generate::SLOT_INTERVAL_S;
-    spec.timing.recovery_interval = crate::generate::SLOT_INTERVAL_S;
+    let interval = crate::generate::slot_interval(spec.uavs.len());
+    spec.timing.launch_interval = interval;
+    spec.timing.recovery_interval = interval;
     Ok(spec)
 }
 

@@ -4,7 +4,7 @@
 //!
 //! Parameter files of earlier versions spelled them as booleans (`feasibility_first`,
 //! `adaptive_spread`, `decompose`, `synchronous`, `transplant`); those keys and values are
-//! still read ([`Switch::from_bool`]). `shifted_copies = false` is now
+//! still read ([`Switch::ON`], [`Switch::OFF`]). `shifted_copies = false` is now
 //! `transplant = "perturbed"`.
 
 use serde::Serialize;
@@ -77,8 +77,10 @@ impl Transplant {
 pub trait Switch: Sized + Copy + 'static {
     /// Every value with its name in a parameters file.
     const NAMES: &'static [(&'static str, Self)];
-    /// The value the old boolean spelling meant.
-    fn from_bool(on: bool) -> Self;
+    /// The value the old spelling `true` meant.
+    const ON: Self;
+    /// The value the old spelling `false` meant.
+    const OFF: Self;
 }
 
 /// Reads a switch from its name or, as earlier files spelled it, a boolean; the error lists
@@ -96,7 +98,7 @@ where
             write!(f, "one of {} (or true / false)", names.join(", "))
         }
         fn visit_bool<E: serde::de::Error>(self, v: bool) -> Result<T, E> {
-            Ok(T::from_bool(v))
+            Ok(if v { T::ON } else { T::OFF })
         }
         fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<T, E> {
             T::NAMES
@@ -114,37 +116,22 @@ impl Switch for Comparison {
         ("feasibility-first", Self::FeasibilityFirst),
         ("penalised-cost", Self::PenalisedCost),
     ];
-    fn from_bool(on: bool) -> Self {
-        if on {
-            Self::FeasibilityFirst
-        } else {
-            Self::PenalisedCost
-        }
-    }
+    const ON: Self = Self::FeasibilityFirst;
+    const OFF: Self = Self::PenalisedCost;
 }
 
 impl Switch for Spread {
     const NAMES: &'static [(&'static str, Self)] =
         &[("adaptive", Self::Adaptive), ("fixed", Self::Fixed)];
-    fn from_bool(on: bool) -> Self {
-        if on {
-            Self::Adaptive
-        } else {
-            Self::Fixed
-        }
-    }
+    const ON: Self = Self::Adaptive;
+    const OFF: Self = Self::Fixed;
 }
 
 impl Switch for Blocks {
     const NAMES: &'static [(&'static str, Self)] =
         &[("per-uav", Self::PerUav), ("whole-plan", Self::WholePlan)];
-    fn from_bool(on: bool) -> Self {
-        if on {
-            Self::PerUav
-        } else {
-            Self::WholePlan
-        }
-    }
+    const ON: Self = Self::PerUav;
+    const OFF: Self = Self::WholePlan;
 }
 
 impl Switch for Updates {
@@ -152,13 +139,8 @@ impl Switch for Updates {
         ("synchronous", Self::Synchronous),
         ("sequential", Self::Sequential),
     ];
-    fn from_bool(on: bool) -> Self {
-        if on {
-            Self::Synchronous
-        } else {
-            Self::Sequential
-        }
-    }
+    const ON: Self = Self::Synchronous;
+    const OFF: Self = Self::Sequential;
 }
 
 impl Switch for Transplant {
@@ -168,11 +150,6 @@ impl Switch for Transplant {
         ("shifted-when-stuck", Self::ShiftedWhenStuck),
     ];
     /// `transplant = true` meant transplants with shifted copies (`shifted_copies`' default).
-    fn from_bool(on: bool) -> Self {
-        if on {
-            Self::ShiftedWhenStuck
-        } else {
-            Self::Off
-        }
-    }
+    const ON: Self = Self::ShiftedWhenStuck;
+    const OFF: Self = Self::Off;
 }
