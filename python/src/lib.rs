@@ -20,6 +20,7 @@ mod errors;
 mod interrupt;
 mod planner;
 mod problem;
+mod replay;
 mod scenario;
 
 #[pymodule]

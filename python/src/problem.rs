@@ -295,6 +295,38 @@ impl Problem {
         Self::json(&AssessmentRecord::of(&assess(&self.world, &plan)))
     }
 
+    /// What a flight replay needs of a plan file (JSON, `replay::FlightPlan`): each
+    /// UAV's flown path, time-stamped, in the scenario's frame, and the limits it is judged by.
+    #[pyo3(signature = (path, allow_other_terrain=false))]
+    fn flight_plan(&self, path: PathBuf, allow_other_terrain: bool) -> PyResult<String> {
+        let plan = self.read_plan(&path, allow_other_terrain)?;
+        Self::json(&crate::replay::flight_plan(&self.world, &plan))
+    }
+
+    /// The terrain's height (m above the datum) at each (x, y), as the model interpolates it.
+    fn terrain_heights<'py>(
+        &self,
+        py: Python<'py>,
+        x: PyReadonlyArray1<'_, f64>,
+        y: PyReadonlyArray1<'_, f64>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let (x, y) = (x.as_slice()?, y.as_slice()?);
+        if x.len() != y.len() {
+            return Err(bad(format!(
+                "x and y: expected arrays of one length, got {} and {}",
+                x.len(),
+                y.len()
+            )));
+        }
+        let terrain = self.world.terrain();
+        let h: Vec<f64> = x
+            .iter()
+            .zip(y)
+            .map(|(&x, &y)| terrain.height(x, y))
+            .collect();
+        Ok(h.into_pyarray(py))
+    }
+
     /// Where a UAV `agl` metres above ground (default: the top of the altitude band) links
     /// directly to a ground node (nominal range, line of sight): the flags (rows along y),
     /// the first cell's corner (x, y), the cell size, the height used and the share of cells

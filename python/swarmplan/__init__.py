@@ -254,6 +254,20 @@ class Problem:
         """The decision vector nearest to a plan file's plan in this encoding."""
         return self._p.encode_plan(os.fspath(path), allow_other_terrain)
 
+    def flight_plan(self, path: PathLike, *, allow_other_terrain: bool = False) -> Dict[str, Any]:
+        """What a flight replay needs of a plan file (docs/flight.md): per UAV its launch,
+        departure and arrival, its flown path as assessed (arcs densified) as arrays ``t``,
+        ``x``, ``y``, ``z`` (absolute altitude), the model's energy and the usable battery;
+        and the scenario's threats, separation, zone radius, clearance, UGV0 and map box."""
+        return json.loads(self._p.flight_plan(os.fspath(path), allow_other_terrain))
+
+    def terrain_heights(self, x: Any, y: Any) -> np.ndarray:
+        """The terrain's height above the datum at each (x, y), metres, as the model
+        interpolates it."""
+        return self._p.terrain_heights(
+            np.ascontiguousarray(x, dtype=np.float64), np.ascontiguousarray(y, dtype=np.float64)
+        )
+
     def ground_coverage(self, agl: Optional[float] = None) -> Dict[str, Any]:
         """Where a UAV ``agl`` metres above ground (default: the top of the altitude band)
         has a direct link to a ground node under the nominal range and the line of sight,
