@@ -48,7 +48,7 @@ const REVERSAL: f64 = 1e-12;
 /// cosine, from the half-angle identities tan(theta/2) = sin / (1 + cos) and
 /// cos(theta/2) = sqrt((1 + cos) / 2), so the hot path needs no trigonometric call.
 #[derive(Debug, Clone, Copy)]
-struct Corner {
+pub(crate) struct Corner {
     u1: DVec3,
     u2: DVec3,
     tan_half: f64,
@@ -195,11 +195,26 @@ impl Fillet {
 /// after the run; every waypoint of the run gets its tangent length, so the segments into
 /// and out of it must hold it (a repeat must not hide a turn: the UAV cannot stop to turn).
 pub fn tangent_lengths(abs: &[DVec3], radius: f64, out: &mut Vec<f64>) {
+    tangents_and_corners(abs, radius, out, &mut Vec::new());
+}
+
+/// [`tangent_lengths`], also keeping each corner's turn at the index of its first waypoint
+/// in `turns` (`None` elsewhere), so that [`flown_polyline_at`] need not work it out again
+/// (issue 47: `Corner::at` ran twice per corner).
+pub(crate) fn tangents_and_corners(
+    abs: &[DVec3],
+    radius: f64,
+    out: &mut Vec<f64>,
+    turns: &mut Vec<Option<Corner>>,
+) {
     out.clear();
     out.resize(abs.len(), 0.0);
+    turns.clear();
+    turns.resize(abs.len(), None);
     for (k, last) in corners(abs) {
         if let Some(c) = Corner::at(abs[k - 1], abs[k], abs[last + 1]) {
             out[k..=last].fill(radius * c.tan_half);
+            turns[k] = Some(c);
         }
     }
 }
@@ -287,11 +302,23 @@ pub struct FlownSegment {
 /// `out`: [`tangent_lengths`], or zeros when there is no corner to fly or no radius (what
 /// [`flown_polyline`] expects).
 pub fn turn_tangents(abs: &[DVec3], radius: f64, out: &mut Vec<f64>) {
+    turn_tangents_and_corners(abs, radius, out, &mut Vec::new());
+}
+
+/// [`turn_tangents`], keeping the corners' turns as [`tangents_and_corners`] does.
+pub(crate) fn turn_tangents_and_corners(
+    abs: &[DVec3],
+    radius: f64,
+    out: &mut Vec<f64>,
+    turns: &mut Vec<Option<Corner>>,
+) {
     if abs.len() < 3 || radius <= 0.0 {
         out.clear();
         out.resize(abs.len(), 0.0);
+        turns.clear();
+        turns.resize(abs.len(), None);
     } else {
-        tangent_lengths(abs, radius, out);
+        tangents_and_corners(abs, radius, out, turns);
     }
 }
 
@@ -304,6 +331,19 @@ pub fn flown_polyline(
     abs: &[DVec3],
     radius: f64,
     tangents: &[f64],
+    out: &mut Vec<DVec3>,
+    from: &mut Vec<FlownSegment>,
+) {
+    flown_polyline_at(abs, radius, tangents, None, out, from);
+}
+
+/// [`flown_polyline`] with the corners' turns of [`turn_tangents_and_corners`] of the same
+/// waypoints when `turns` is given (the same turns, so the same path bit for bit).
+pub(crate) fn flown_polyline_at(
+    abs: &[DVec3],
+    radius: f64,
+    tangents: &[f64],
+    turns: Option<&[Option<Corner>]>,
     out: &mut Vec<DVec3>,
     from: &mut Vec<FlownSegment>,
 ) {
@@ -344,6 +384,8 @@ pub fn flown_polyline(
         }
         let corner = if abs[k - 1] == abs[k] {
             None
+        } else if let Some(turns) = turns {
+            turns[k]
         } else {
             Corner::at(abs[k - 1], abs[k], abs[last + 1])
         };

@@ -60,6 +60,9 @@ pub struct TimedPath {
     /// Of a flown path: the tangent length R tan(theta / 2) of each waypoint's turn
     /// ([`crate::flight::turn_tangents`]).
     pub tangents: Vec<f64>,
+    /// Of a flown path: each corner's turn, at its first waypoint, found with the tangents
+    /// and reused to build the arcs.
+    pub(crate) turns: Vec<Option<crate::flight::Corner>>,
 }
 
 impl TimedPath {
@@ -273,6 +276,7 @@ impl TimedPlan {
             tp.fill_geometry(world, path);
             tp.flown.clear();
             tp.tangents.clear();
+            tp.turns.clear();
             tp.delay = delay_share(plan.delay(u));
         }
         self.schedule(world);
@@ -296,7 +300,12 @@ impl TimedPlan {
             if source.is(radius, &wp.abs) {
                 continue;
             }
-            crate::flight::turn_tangents(&wp.abs, radius, &mut tp.tangents);
+            crate::flight::turn_tangents_and_corners(
+                &wp.abs,
+                radius,
+                &mut tp.tangents,
+                &mut tp.turns,
+            );
             source.set(radius, &wp.abs);
         }
     }
@@ -318,10 +327,11 @@ impl TimedPlan {
                 continue;
             }
             let radius = world.spec().uavs[u].turn_radius;
-            crate::flight::flown_polyline(
+            crate::flight::flown_polyline_at(
                 &wp.abs,
                 radius,
                 &tp.tangents,
+                Some(&tp.turns),
                 &mut tp.abs,
                 &mut tp.flown,
             );
