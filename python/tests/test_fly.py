@@ -107,3 +107,23 @@ def test_without_jsbsim_fly_says_how_to_install_it(monkeypatch, tmp_path):
     monkeypatch.setitem(sys.modules, "jsbsim", None)
     with pytest.raises(ModuleNotFoundError, match=r'pip install "./python\[fly\]"'):
         fly(tmp_path)
+
+
+def test_wind_and_turbulence_move_the_flight_and_a_seed_repeats_it(cli, tmp_path):
+    out = tmp_path / "tiny"
+    run_cli(cli, "plan", "--scenario", "tiny", "--seed", "1", "--out", str(out), "--no-figures")
+    flights = {}
+    for name, kwargs in {
+        "calm": {},
+        "gusty": dict(wind=(5.0, 0.0), turbulence="moderate", seed=3),
+        "again": dict(wind=(5.0, 0.0), turbulence="moderate", seed=3),
+        "other": dict(wind=(5.0, 0.0), turbulence="moderate", seed=4),
+    }.items():
+        report = fly(out, figure=False, out=tmp_path / name, **kwargs)
+        assert report["kept"], report["losses"]
+        flights[name] = (tmp_path / name / "flight.csv").read_text()
+    assert flights["gusty"] == flights["again"]
+    assert flights["gusty"] != flights["other"]
+    assert flights["gusty"] != flights["calm"]
+    with pytest.raises(ValueError, match="turbulence: expected one of"):
+        fly(out, figure=False, out=tmp_path / "bad", turbulence="stormy")

@@ -13,7 +13,7 @@ def draw(
     report: Dict[str, Any],
     ground: Callable[[np.ndarray, np.ndarray], np.ndarray],
 ) -> None:
-    """Writes the figure to ``path`` (PNG): left the top view (threats' hard zones, each
+    """Writes the figure to ``path`` (PNG): left the top view (threats at radius r, each
     UAV's planned path dashed and flown path solid), right each UAV's altitude over time,
     planned and flown, with the terrain under the flown path; a red cross where a limit was
     lost."""
