@@ -207,16 +207,21 @@ pub(crate) fn tangents_and_corners(
     out: &mut Vec<f64>,
     turns: &mut Vec<Option<Corner>>,
 ) {
-    out.clear();
-    out.resize(abs.len(), 0.0);
-    turns.clear();
-    turns.resize(abs.len(), None);
+    no_turns(abs.len(), out, turns);
     for (k, last) in corners(abs) {
         if let Some(c) = Corner::at(abs[k - 1], abs[k], abs[last + 1]) {
             out[k..=last].fill(radius * c.tan_half);
             turns[k] = Some(c);
         }
     }
+}
+
+/// `len` zero tangent lengths and no turns.
+fn no_turns(len: usize, out: &mut Vec<f64>, turns: &mut Vec<Option<Corner>>) {
+    out.clear();
+    out.resize(len, 0.0);
+    turns.clear();
+    turns.resize(len, None);
 }
 
 /// The corners of the path through `abs`: (first, last) index of each run of equal inner
@@ -313,10 +318,7 @@ pub(crate) fn turn_tangents_and_corners(
     turns: &mut Vec<Option<Corner>>,
 ) {
     if abs.len() < 3 || radius <= 0.0 {
-        out.clear();
-        out.resize(abs.len(), 0.0);
-        turns.clear();
-        turns.resize(abs.len(), None);
+        no_turns(abs.len(), out, turns);
     } else {
         tangents_and_corners(abs, radius, out, turns);
     }
