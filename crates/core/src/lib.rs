@@ -13,6 +13,7 @@
 //! - [`method`]: a method = optimizer + encoding + initialisation, and the named presets.
 
 pub mod attempts;
+pub mod band_route;
 pub mod cost;
 pub mod encoding;
 pub mod feasibility;

@@ -7,6 +7,7 @@
 
 use glam::DVec2;
 
+use crate::band_route::{band_ways, BandWays};
 use crate::cost::Assessment;
 use crate::route::RouteMap;
 use crate::world::spec::ScenarioSpec;
@@ -33,7 +34,10 @@ pub fn infeasible_outcome(world: &World, assessment: &Assessment) -> Option<Stri
         };
         return Some(format!("no plan exists: {first}{more}"));
     }
-    let mut ways: Vec<String> = ways(spec).into_iter().map(|w| w.sentence()).collect();
+    let mut ways: Vec<String> = ways_in_world(world)
+        .into_iter()
+        .map(|w| w.sentence())
+        .collect();
     match unsearched_starts(spec) {
         0 => {}
         n => ways.push(format!("{n} further starts not searched")),
@@ -75,6 +79,9 @@ pub struct StartWays {
     pub shortest_at_least: Option<f64>,
     /// The widest way's margin beyond the hard zones, m, capped at 100 m (`None`: no way).
     pub widest_margin: Option<f64>,
+    /// What the route layer finds in height ([`crate::band_route`]), for the first UAV of
+    /// the start; `None` where the terrain was not at hand ([`ways`]).
+    pub band: Option<BandWays>,
 }
 
 impl StartWays {
@@ -91,7 +98,7 @@ impl StartWays {
                     .join(", ")
             ),
         };
-        match (self.shortest_at_least, self.widest_margin) {
+        let planar = match (self.shortest_at_least, self.widest_margin) {
             (Some(l), Some(m)) => {
                 let width = if m >= WIDEST_CAP_M {
                     format!("at least {WIDEST_CAP_M:.0} m")
@@ -111,6 +118,10 @@ impl StartWays {
                 "{who} no way around the threats' hard zones reaches UGV0 (route grid, {:.1} m cells)",
                 self.cell
             ),
+        };
+        match &self.band {
+            Some(b) => format!("{planar}; {}", b.sentence()),
+            None => planar,
         }
     }
 }
@@ -137,10 +148,30 @@ pub fn ways(spec: &ScenarioSpec) -> Vec<StartWays> {
             cell: map.cell(),
             shortest_at_least: map.length_lower_bound(start, goal),
             widest_margin: map.widest_margin(start, goal, WIDEST_CAP_M),
+            band: None,
         };
         out.push((start, u.size, found));
     }
     out.into_iter().map(|(_, _, w)| w).collect()
+}
+
+/// [`ways`] with the route layer in height for each start searched (a second or so each
+/// on the outside instances: [`crate::band_route`]). Only a start whose planar way exists
+/// is searched in height.
+#[must_use]
+pub fn ways_in_world(world: &World) -> Vec<StartWays> {
+    let mut out = ways(world.spec());
+    for w in &mut out {
+        if w.shortest_at_least.is_some() {
+            w.band = Some(band_ways(
+                world,
+                w.uavs[0],
+                crate::band_route::CELLS_ALONG,
+                crate::band_route::LEVELS,
+            ));
+        }
+    }
+    out
 }
 
 /// How many distinct starts (and UAV sizes) of `spec` the route layer does not search

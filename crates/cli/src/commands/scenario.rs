@@ -25,7 +25,7 @@ pub fn check(scenario: &str) -> Result<()> {
     let loaded = load_spec(scenario)?;
     let world = swarmplan_io::scenario::build_world(&loaded, None)?;
     let spec = world.spec();
-    for w in swarmplan_core::outcome::ways(spec) {
+    for w in swarmplan_core::outcome::ways_in_world(&world) {
         println!("{}", w.sentence());
     }
     match swarmplan_core::outcome::unsearched_starts(spec) {

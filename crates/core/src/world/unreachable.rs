@@ -233,7 +233,7 @@ fn battery_short(
 
 /// The speed in `[lo, hi]` where `energy` is least, and that energy: a golden-section
 /// search (the rotary-wing energy per metre is unimodal in speed), then the ends.
-fn most_economical(energy: impl Fn(f64) -> f64, [lo, hi]: [f64; 2]) -> (f64, f64) {
+pub(crate) fn most_economical(energy: impl Fn(f64) -> f64, [lo, hi]: [f64; 2]) -> (f64, f64) {
     let lo = lo.max(1e-3);
     let hi = hi.max(lo);
     let phi = 0.5 * (5f64.sqrt() - 1.0);
