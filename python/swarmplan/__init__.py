@@ -89,7 +89,7 @@ class Problem:
             ``gwo``, ``pso``, ... or ``optimizer/encoding/init``).
         encoding: replaces the method's encoding (``spherical``, ``cartesian``, ``angle``).
         init: replaces the method's initialisation (``uniform``, ``line``, ``corridor``,
-            ``fan``, ``route``, ``line-corridor``).
+            ``fan``, ``route``, ``band``, ``line-corridor``, ``line-band``).
         profile: ``strict`` or ``paper``, replacing the scenario's feasibility profile.
     """
 

@@ -15,7 +15,7 @@
 //! and UAV0's goal. Two places are joined when the straight segment between them keeps
 //! the climb limit, passes outside every hard zone (exactly) and keeps `map.clearance` above
 //! the terrain at every `map.clearance_step` (the model's own test,
-//! [`Terrain::samples_clear`]). A segment's energy is the cruise energy per metre at the
+//! [`crate::world::terrain::Terrain::samples_clear`]). A segment's energy is the cruise energy per metre at the
 //! most economical speed times its length plus m g times its rise (docs/model.md,
 //! "Energy"; turns and hovering are not counted). Then:
 //! - breadth-first search gives the fewest segments from the start to the goal;
@@ -158,8 +158,10 @@ struct Graph {
     cell: f64,
     /// Absolute points: the start first, the goal last.
     points: Vec<DVec3>,
-    /// (to, joules) of every segment out of each point, in point order.
-    out: Vec<Vec<(usize, f64)>>,
+    /// (to, joules) of every segment out of each point, in point order; narrow types
+    /// because the outside instances' grids hold some ten million segments (the energy's
+    /// single precision moves a way's sum by less than a millijoule per kilojoule).
+    out: Vec<Vec<(u32, f32)>>,
 }
 
 impl Graph {
@@ -215,19 +217,21 @@ impl Graph {
         let energy = |a: DVec3, b: DVec3| per_metre * a.distance(b) + weight * (b.z - a.z).max(0.0);
         // Each pair is tested once, by its lower index; rows are built in parallel and
         // collected in order, so the graph is the same on any number of threads.
-        let rows: Vec<Vec<usize>> = (0..points.len())
+        let rows: Vec<Vec<u32>> = (0..points.len())
             .into_par_iter()
             .map(|a| {
                 (a + 1..points.len())
                     .filter(|&b| joined(points[a], points[b]))
+                    .map(|b| b as u32)
                     .collect()
             })
             .collect();
         let mut out = vec![Vec::new(); points.len()];
-        for (a, row) in rows.iter().enumerate() {
-            for &b in row {
-                out[a].push((b, energy(points[a], points[b])));
-                out[b].push((a, energy(points[b], points[a])));
+        for (a, row) in rows.into_iter().enumerate() {
+            for b in row {
+                let bi = b as usize;
+                out[a].push((b, energy(points[a], points[bi]) as f32));
+                out[bi].push((a as u32, energy(points[bi], points[a]) as f32));
             }
         }
         Self { cell, points, out }
@@ -239,6 +243,7 @@ impl Graph {
         let mut stack = vec![from];
         while let Some(a) = stack.pop() {
             for &(b, _) in &self.out[a] {
+                let b = b as usize;
                 if !seen[b] {
                     seen[b] = true;
                     stack.push(b);
@@ -251,7 +256,7 @@ impl Graph {
     fn fewest_segments(&self, from: usize, to: usize) -> Option<usize> {
         pathfinding::prelude::bfs(
             &from,
-            |&a| self.out[a].iter().map(|&(b, _)| b),
+            |&a| self.out[a].iter().map(|&(b, _)| b as usize),
             |&a| a == to,
         )
         .map(|way| way.len() - 1)
@@ -274,6 +279,7 @@ impl Graph {
             let mut before: Vec<usize> = (0..n).collect();
             for a in (0..n).filter(|&a| best[a].is_finite()) {
                 for &(b, e) in &self.out[a] {
+                    let (b, e) = (b as usize, f64::from(e));
                     if best[a] + e < next[b] {
                         next[b] = best[a] + e;
                         before[b] = a;
@@ -303,7 +309,11 @@ impl Graph {
         let mj = |e: f64| (e * 1000.0).round() as u64;
         pathfinding::prelude::dijkstra(
             &from,
-            |&a| self.out[a].iter().map(move |&(b, e)| (b, mj(e))),
+            |&a| {
+                self.out[a]
+                    .iter()
+                    .map(move |&(b, e)| (b as usize, mj(f64::from(e))))
+            },
             |&a| a == to,
         )
         .map(|(_, c)| c as f64 / 1000.0)
@@ -311,14 +321,14 @@ impl Graph {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::world::spec::{GoalSpec, ScenarioSpec, UavSpec};
     use crate::world::terrain::{Sampling, Terrain};
 
     /// One UAV from (100, 500) to (900, 500) over a 1000 m map without threats, with
     /// `waypoints` free waypoints, over `terrain`.
-    fn world(waypoints: usize, terrain: Terrain) -> World {
+    pub(crate) fn world(waypoints: usize, terrain: Terrain) -> World {
         let mut spec = ScenarioSpec {
             name: "band".into(),
             description: String::new(),
@@ -345,7 +355,7 @@ mod tests {
     }
 
     /// Terrain over a 1000 m square from heights `h(x)` at 10 m nodes.
-    fn terrain(h: impl Fn(f64) -> f64) -> Terrain {
+    pub(crate) fn terrain(h: impl Fn(f64) -> f64) -> Terrain {
         let n = 101;
         let heights = (0..n * n).map(|k| h((k % n) as f64 * 10.0)).collect();
         Terrain::new(n, n, (0.0, 0.0), (10.0, 10.0), heights, Sampling::Bilinear).unwrap()
@@ -363,7 +373,7 @@ mod tests {
     }
 
     /// A plateau 1700 m up for x < 195, a terrace 1000 m up to x = 495, a plain beyond.
-    fn steps(x: f64) -> f64 {
+    pub(crate) fn steps(x: f64) -> f64 {
         if x < 195.0 {
             1700.0
         } else if x < 495.0 {

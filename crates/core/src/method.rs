@@ -18,7 +18,7 @@
 //! | `gwo` | gwo | spherical | uniform | Mirjalili et al. 2014 |
 //! | `abc` | abc | spherical | uniform | Karaboga 2005 |
 //! | `pso-uniform`, `apso-uniform` | pso | cartesian / angle | uniform | ablations: the first build's PSO and APSO |
-//! | `swarmplan` | coop | spherical | line-corridor | swarmplan's own: cooperative coevolution, feasibility first, from bowed start-goal lines, going on from the threat-free corridor at half the budget when more than 20 violations are left (issue 46) |
+//! | `swarmplan` | coop | spherical | line-band | swarmplan's own: cooperative coevolution, feasibility first, from bowed start-goal lines, going on from the route layer's way in height at half the budget when more than 20 violations are left (issue 46) |
 //! | `swarmplan-uniform` | coop | spherical | uniform | ablation: swarmplan's method from a uniform box (its default before; docs/results.md) |
 //! | `lshade` | lshade | spherical | uniform | Tanabe & Fukunaga 2014 (a modern baseline, on the encoding the paper's methods use) |
 //! | `cmaes` | cmaes | spherical | uniform | Hansen & Ostermeier 2001 with IPOP restarts (Auger & Hansen 2005) |
@@ -152,7 +152,7 @@ pub const PRESETS: [Preset; 14] = [
         "swarmplan",
         OptimizerKind::Coop,
         EncodingKind::Spherical,
-        InitKind::LineCorridor,
+        InitKind::LineBand,
         false,
     ),
     preset(

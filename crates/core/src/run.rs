@@ -79,9 +79,10 @@ fn search(
 /// of (the stage's).
 type StageObserver<'a> = dyn FnMut(&IterationRecord, &[f64], &PlanningProblem) + 'a;
 
-/// The search of `req`, staged for the `line-corridor` start: the line run, given up when it
-/// is still far from feasible at half its evaluation budget ([`line_corridor_give_up`]),
-/// then a corridor run with the evaluations left, the same generator going on; the better
+/// The search of `req`, staged for the `line-corridor` and `line-band` starts: the line run,
+/// given up when it is still far from feasible at half its evaluation budget
+/// ([`line_corridor_give_up`]), then a corridor (or band, [`InitKind::after_line`]) run with
+/// the evaluations left, the same generator going on; the better
 /// of the two by Deb's rules is kept, with the problem that decodes it. Records of the
 /// second stage count on from the first's evaluations and iterations. Any other start is
 /// one stage.
@@ -95,7 +96,8 @@ fn staged_search<'w>(
     // corridor's route search).
     let started = Some(req.budget.started.unwrap_or_else(Instant::now));
     let first = PlanningProblem::new(world, req.method.encoding, req.method.init);
-    let staged = req.method.init == InitKind::LineCorridor;
+    let after_line = req.method.init.after_line();
+    let staged = after_line.is_some();
     let mut budget = req.budget;
     budget.started = started;
     if let (true, Some(total)) = (staged, budget.evaluations) {
@@ -110,7 +112,11 @@ fn staged_search<'w>(
     if outcome.termination != Termination::GaveUp {
         return (first, outcome);
     }
-    let second = PlanningProblem::new(world, req.method.encoding, InitKind::Corridor);
+    let second = PlanningProblem::new(
+        world,
+        req.method.encoding,
+        after_line.unwrap_or(InitKind::Corridor),
+    );
     let mut rest = req.budget;
     rest.started = started;
     rest.evaluations = req

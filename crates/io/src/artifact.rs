@@ -210,7 +210,7 @@ pub struct RunArtifact {
     pub iterations: usize,
     /// Why the search stopped (`time-limit`: not reproducible from the seed alone).
     pub termination: Termination,
-    /// Of a staged run (the `line-corridor` start): the evaluations after which it left
+    /// Of a staged run (the `line-corridor` and `line-band` starts): the evaluations after which it left
     /// its line start for the corridor.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub restarted_after: Option<u64>,

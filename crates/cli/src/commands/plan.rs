@@ -38,8 +38,10 @@ pub struct PlanArgs {
     /// Replace the method's initialisation: uniform, line, corridor (a threat-free corridor;
     /// docs/results.md, "Outside benchmark instances"), fan (half of the draws fan the fleet
     /// out; docs/results.md, "A fanned start"), route (the route layer's cheapest way by
-    /// energy), line-corridor (line, then corridor from half the budget when still far from
-    /// feasible; docs/results.md, "The route layer and the outside instances").
+    /// energy), band (the route layer's way in height, with its heights; docs/results.md,
+    /// "The route layer in height"), line-corridor (line, then corridor from half the budget
+    /// when still far from feasible; docs/results.md, "The route layer and the outside
+    /// instances"), line-band (line, then band: swarmplan's).
     #[arg(long)]
     pub init: Option<InitKind>,
     /// Seed of the run (default: the scenario's `planning.seed`).

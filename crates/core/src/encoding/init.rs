@@ -54,11 +54,18 @@ pub enum InitKind {
     /// As `corridor`, on the route layer's cheapest way by energy over the terrain
     /// ([`super::routed`]) instead of the shortest threat-free corridor.
     Route,
+    /// As `corridor`, on the route layer's way in height ([`super::banded`]): its free
+    /// waypoints with their heights, displaced sideways by the `corridor` bow and up or down
+    /// by a random offset of up to a level's spacing; a UAV whose start has no such way is
+    /// drawn as `corridor`.
+    Band,
     /// `line`, and when the best plan still has more than [`line_corridor_give_up`]
     /// violations after half the evaluation budget, `corridor` with the other half (a
     /// staged run, [`crate::run`]); a run feasible or nearly so by then is the `line` run,
     /// bit for bit.
     LineCorridor,
+    /// As `line-corridor`, with `band` instead of `corridor` after a given-up line run.
+    LineBand,
 }
 
 /// The violation measure above which a `line-corridor` run leaves its line start for the
@@ -94,14 +101,27 @@ pub const FAN_SPREAD: f64 = 0.3;
 
 impl InitKind {
     /// Every initialisation.
-    pub const ALL: [Self; 6] = [
+    pub const ALL: [Self; 8] = [
         Self::Uniform,
         Self::Line,
         Self::Corridor,
         Self::Fan,
         Self::Route,
+        Self::Band,
         Self::LineCorridor,
+        Self::LineBand,
     ];
+
+    /// The start a staged run goes on from after giving its `line` run up, if it is staged
+    /// (`line-corridor`, `line-band`; [`crate::run`]).
+    #[must_use]
+    pub const fn after_line(self) -> Option<Self> {
+        match self {
+            Self::LineCorridor => Some(Self::Corridor),
+            Self::LineBand => Some(Self::Band),
+            _ => None,
+        }
+    }
 
     /// The name used on the command line and in records (`uniform`, ...).
     #[must_use]
@@ -112,7 +132,9 @@ impl InitKind {
             Self::Corridor => "corridor",
             Self::Fan => "fan",
             Self::Route => "route",
+            Self::Band => "band",
             Self::LineCorridor => "line-corridor",
+            Self::LineBand => "line-band",
         }
     }
 }
@@ -131,7 +153,7 @@ impl FromStr for InitKind {
             .find(|k| k.name().eq_ignore_ascii_case(s))
             .ok_or_else(|| {
                 format!(
-                    "unknown initialisation `{s}`; expected uniform, line, corridor, fan, route or line-corridor"
+                    "unknown initialisation `{s}`; expected uniform, line, corridor, fan, route, band, line-corridor or line-band"
                 )
             })
     }
@@ -190,6 +212,61 @@ pub fn sample_corridor_plan(
     plan: &mut Plan,
 ) {
     sample_bowed_plan(frame, corridors, rng, plan);
+}
+
+/// A plan drawn by the `band` sampler ([`InitKind::Band`]): each seeded UAV's absolute
+/// waypoints bowed sideways, held at their altitude over the `ground` below their new
+/// place, and shifted up or down together by as much as keeps them in the band (at most a
+/// level's spacing; clamped into the band where no shift can).
+pub fn sample_band_plan(
+    frame: &PathFrame,
+    seeds: &super::banded::BandSeeds,
+    ground: &dyn Fn(DVec2) -> f64,
+    rng: &mut Rng,
+    plan: &mut Plan,
+) {
+    sample_bowed_plan(frame, &seeds.guides, rng, plan);
+    let level = (frame.z[1] - frame.z[0]) / (crate::band_route::LEVELS - 1) as f64;
+    for (i, path) in plan.uavs.iter_mut().enumerate() {
+        let Some(points) = seeds.waypoints.get(i).filter(|w| w.len() == frame.n) else {
+            continue;
+        };
+        let axes = start_goal_axes(frame.starts[i], frame.goal);
+        let h = CORRIDOR_SPREAD * axes.0;
+        let a1 = uniform(-h, h, rng);
+        let a2 = uniform(-0.5 * h, 0.5 * h, rng);
+        let u: f64 = rng.random();
+        let placed: Vec<(DVec2, f64)> = points
+            .iter()
+            .enumerate()
+            .map(|(k, p)| {
+                let t = (k + 1) as f64 / (frame.n + 1) as f64;
+                let bow = a1 * (PI * t).sin() + a2 * (2.0 * PI * t).sin();
+                let q = p.truncate() + axes.2 * bow;
+                let q = DVec2::new(
+                    q.x.clamp(frame.x[0], frame.x[1]),
+                    q.y.clamp(frame.y[0], frame.y[1]),
+                );
+                (q, p.z - ground(q))
+            })
+            .collect();
+        // The shift keeps every waypoint in the band where it can (a waypoint clamped alone
+        // would bend the way up or down steeply), within a level's spacing.
+        let lower = placed
+            .iter()
+            .fold(-level, |m, &(_, agl)| m.max(frame.z[0] - agl));
+        let upper = placed
+            .iter()
+            .fold(level, |m, &(_, agl)| m.min(frame.z[1] - agl));
+        let dz = if lower <= upper {
+            lower + u * (upper - lower)
+        } else {
+            0.0
+        };
+        for (k, (q, agl)) in placed.into_iter().enumerate() {
+            path.waypoints[k + 1] = DVec3::new(q.x, q.y, (agl + dz).clamp(frame.z[0], frame.z[1]));
+        }
+    }
 }
 
 /// Free waypoints along each UAV's guide (its corridor, resampled with its corners, when it has one of at
@@ -349,6 +426,20 @@ mod tests {
         }
         assert!((70..=150).contains(&fan), "fan: {fan} of 200 fanned");
         assert!(line < 30, "line: {line} of 200 fanned");
+    }
+
+    #[test]
+    fn only_the_staged_starts_go_on_after_a_line_run() {
+        assert_eq!(
+            InitKind::LineCorridor.after_line(),
+            Some(InitKind::Corridor)
+        );
+        assert_eq!(InitKind::LineBand.after_line(), Some(InitKind::Band));
+        let staged = InitKind::ALL
+            .into_iter()
+            .filter(|k| k.after_line().is_some())
+            .count();
+        assert_eq!(staged, 2);
     }
 
     #[test]

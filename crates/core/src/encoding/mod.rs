@@ -6,6 +6,7 @@
 //! start, n free waypoints, goal, with z as height above ground.
 
 pub mod angle;
+pub mod banded;
 pub mod cartesian;
 pub mod corridor;
 pub mod delayed;

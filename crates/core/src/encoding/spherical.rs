@@ -18,6 +18,10 @@ use super::{PathEncoding, PathFrame};
 use crate::plan::Plan;
 use crate::problem::Bound;
 
+/// How much longer than a guide's move its motion may be, where that exceeds the base
+/// bound of twice the guide's length over n.
+const LONG_MOVE_ROOM: f64 = 1.5;
+
 /// Which trigonometric convention maps phi to the plane.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum AngleConvention {
@@ -60,8 +64,11 @@ impl Spherical {
         for (i, s) in frame.starts.iter().enumerate() {
             let d = frame.goal - *s;
             let guide = guides.get(i).filter(|g| g.len() >= 2);
-            let (r_max, phis): (f64, Vec<f64>) = match guide {
-                None => (2.0 * d.length() / n as f64, vec![d.y.atan2(d.x); n]),
+            let (r_max, phis): (Vec<f64>, Vec<f64>) = match guide {
+                None => (
+                    vec![2.0 * d.length() / n as f64; n],
+                    vec![d.y.atan2(d.x); n],
+                ),
                 Some(g) => {
                     let length: f64 = g.windows(2).map(|w| w[0].distance(w[1])).sum();
                     let mut points = vec![s.truncate()];
@@ -71,13 +78,17 @@ impl Spherical {
                         AngleConvention::Spso => (b.x - a.x).atan2(b.y - a.y),
                     };
                     let phis = points.windows(2).map(|w| bearing(w[0], w[1])).collect();
-                    (
-                        (2.0 * length / n as f64).max(2.0 * d.length() / n as f64),
-                        phis,
-                    )
+                    let base = (2.0 * length / n as f64).max(2.0 * d.length() / n as f64);
+                    // A guide's move longer than the base (a straight over a valley between
+                    // waypoints held in the band, `band`) keeps room to be expressed.
+                    let r_max = points
+                        .windows(2)
+                        .map(|w| base.max(LONG_MOVE_ROOM * w[0].distance(w[1])))
+                        .collect();
+                    (r_max, phis)
                 }
             };
-            bounds.extend(std::iter::repeat_n(Bound::new(0.0, r_max), n));
+            bounds.extend(r_max.iter().map(|&r| Bound::new(0.0, r)));
             bounds.extend(std::iter::repeat_n(Bound::new(-FRAC_PI_4, FRAC_PI_4), n));
             bounds.extend(
                 phis.iter()

@@ -8,7 +8,9 @@
 use std::cell::RefCell;
 
 use crate::cost::{assess, assess_bounded, assess_into, Assessment, Cutoff, Scratch};
-use crate::encoding::init::{sample_corridor_plan, sample_fan_plan, sample_line_plan};
+use crate::encoding::init::{
+    sample_band_plan, sample_corridor_plan, sample_fan_plan, sample_line_plan,
+};
 use crate::encoding::{self, EncodingKind, InitKind, PathEncoding, PathFrame};
 use crate::feasibility::ViolationSink;
 use crate::plan::Plan;
@@ -50,6 +52,8 @@ pub struct PlanningProblem<'w> {
     frame: PathFrame,
     /// Threat-free corridors per UAV, computed once for the `corridor` initialisation.
     corridors: crate::encoding::corridor::Corridors,
+    /// The `band` initialisation's seeds (empty otherwise).
+    band: crate::encoding::banded::BandSeeds,
 }
 
 /// Slots of [`Problem::evaluate_cost_bounded_in`] with buffers of their own (per thread);
@@ -70,6 +74,12 @@ impl<'w> PlanningProblem<'w> {
     /// corridors when `init` is `corridor`); a free pace or free delays add their variables.
     #[must_use]
     pub fn new(world: &'w World, kind: EncodingKind, init: InitKind) -> Self {
+        if init == InitKind::Band {
+            let band = encoding::banded::band_seeds(world);
+            let mut problem = Self::with_corridors(world, kind, init, band.guides.clone());
+            problem.band = band;
+            return problem;
+        }
         let corridors = match init {
             InitKind::Corridor => encoding::corridor::corridors(world),
             InitKind::Route => encoding::routed::route_guides(world),
@@ -111,6 +121,7 @@ impl<'w> PlanningProblem<'w> {
             init,
             frame: PathFrame::of(world),
             corridors,
+            band: crate::encoding::banded::BandSeeds::default(),
         }
     }
 
@@ -283,13 +294,18 @@ impl Problem for PlanningProblem<'_> {
         let mut plan = Plan::default();
         match self.init {
             InitKind::Uniform => return fill_uniform(self.encoding.bounds(), rng, out),
-            InitKind::Line | InitKind::LineCorridor => {
+            InitKind::Line | InitKind::LineCorridor | InitKind::LineBand => {
                 sample_line_plan(&self.frame, rng, &mut plan);
             }
             InitKind::Corridor | InitKind::Route => {
                 sample_corridor_plan(&self.frame, &self.corridors, rng, &mut plan);
             }
             InitKind::Fan => sample_fan_plan(&self.frame, rng, &mut plan),
+            InitKind::Band => {
+                let terrain = self.world.terrain();
+                let ground = |q: glam::DVec2| terrain.height(q.x, q.y);
+                sample_band_plan(&self.frame, &self.band, &ground, rng, &mut plan);
+            }
         }
         self.draw_pace(rng, &mut plan);
         self.draw_delays(rng, &mut plan);

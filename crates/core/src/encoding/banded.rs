@@ -1,0 +1,195 @@
+//! Seeds of the `band` initialisation (issue 46, items 1 and 5): per start, the route
+//! layer's way in height ([`crate::band_route`]), the least-energy way the scenario's free
+//! waypoints allow, given to the optimizer as free waypoints with their heights.
+//!
+//! Why: the `corridor` and `route` starts follow a planar way at one random height above
+//! ground, so on rugged terrain the UAV climbs every ridge on it and runs out of battery or
+//! breaks the climb limit (outside-2, -6). The height search's way keeps the climb limit,
+//! clears the terrain and fits the battery where the grid holds one; the optimizer then
+//! only has to smooth its turns and keep contact and separation. A start whose grid holds
+//! no such way falls back to its threat-free corridor ([`super::corridor`]).
+
+use glam::{DVec2, DVec3};
+
+use super::corridor::{corridors, Corridors};
+use crate::band_route::{band_ways, CELLS_ALONG, LEVELS};
+use crate::route::STARTS_SEARCHED;
+use crate::world::World;
+
+/// Per UAV, the planar guide (for the heading sectors) and the free waypoints
+/// (absolute) seeded from its way in height; no waypoints where it has none.
+#[derive(Debug, Clone, Default)]
+pub struct BandSeeds {
+    /// Planar guides, one per UAV (its way's plan view, or its corridor).
+    pub guides: Corridors,
+    /// Free waypoints per UAV, absolute [x, y, z], empty where the UAV has no way.
+    pub waypoints: Vec<Vec<DVec3>>,
+}
+
+/// The seeds of `world` (the same for UAVs sharing a start and size).
+#[must_use]
+pub fn band_seeds(world: &World) -> BandSeeds {
+    let spec = world.spec();
+    let n = spec.planning.waypoints;
+    let [lo, hi] = spec.map.z_agl;
+    let mut fallback: Option<Corridors> = None;
+    let mut out = BandSeeds::default();
+    let mut done: Vec<(DVec2, f64, usize)> = Vec::new();
+    for (i, u) in spec.uavs.iter().enumerate() {
+        let start = world.start(i).truncate();
+        if let Some(&(_, _, j)) = done.iter().find(|(s, z, _)| *s == start && *z == u.size) {
+            let (g, w) = (out.guides[j].clone(), out.waypoints[j].clone());
+            out.guides.push(g);
+            out.waypoints.push(w);
+            continue;
+        }
+        done.push((start, u.size, i));
+        // Past the route layer's first starts (a second or so each), the corridor.
+        let found = (done.len() <= STARTS_SEARCHED)
+            .then(|| band_ways(world, i, CELLS_ALONG, LEVELS))
+            .and_then(|b| b.within);
+        match found {
+            Some((_, way)) if way.len() >= 2 && way.len() <= n + 2 => {
+                let height = |q: DVec2| world.terrain().height(q.x, q.y);
+                let points = on_the_way(&way, n, [lo, hi], &height);
+                // The guide runs through the seeded waypoints, so that the encoding's
+                // heading sectors and move lengths are centred on them.
+                let mut plan_view = vec![way[0].truncate()];
+                plan_view.extend(points.iter().map(|p| p.truncate()));
+                plan_view.push(way[way.len() - 1].truncate());
+                out.guides.push(plan_view);
+                out.waypoints.push(points);
+            }
+            _ => {
+                let all = fallback.get_or_insert_with(|| corridors(world));
+                out.guides.push(all[i].clone());
+                out.waypoints.push(Vec::new());
+            }
+        }
+    }
+    out
+}
+
+/// Spacing of the places tried along a segment for the extra waypoints, m.
+const ALONG_STEP_M: f64 = 5.0;
+
+/// `n` absolute points on `way` (at most `n` interior vertices): its interior vertices,
+/// and the rest at even shares of the way's length among the places on its segments whose
+/// height above ground lies in `band`, so that the free waypoints, held in the band,
+/// fly exactly the way (a point halfway along a segment high over a valley, pulled down
+/// into the band, would dive steeper than the climb limit). Where fewer such places exist
+/// than points are needed, the rest sit on the way at even shares, clamped later.
+fn on_the_way(
+    way: &[DVec3],
+    n: usize,
+    band: [f64; 2],
+    height: &dyn Fn(DVec2) -> f64,
+) -> Vec<DVec3> {
+    let mut along = 0.0;
+    let mut corners: Vec<(f64, DVec3)> = Vec::new();
+    let mut places: Vec<(f64, DVec3)> = Vec::new();
+    for (k, w) in way.windows(2).enumerate() {
+        if k > 0 {
+            corners.push((along, w[0]));
+        }
+        let length = w[0].distance(w[1]);
+        let steps = (length / ALONG_STEP_M).ceil().max(1.0) as usize;
+        for m in 1..steps {
+            let t = m as f64 / steps as f64;
+            let p = w[0].lerp(w[1], t);
+            let agl = p.z - height(p.truncate());
+            if agl >= band[0] && agl <= band[1] {
+                places.push((along + t * length, p));
+            }
+        }
+        along += length;
+    }
+    let extra = n.saturating_sub(corners.len());
+    let mut chosen: Vec<(f64, DVec3)> = if places.len() >= extra {
+        (0..extra)
+            .map(|k| places[((k as f64 + 0.5) * places.len() as f64 / extra as f64) as usize])
+            .collect()
+    } else {
+        (0..extra)
+            .map(|k| {
+                let share = (k + 1) as f64 / (extra + 1) as f64;
+                (share * along, point_at(way, share * along))
+            })
+            .collect()
+    };
+    chosen.extend(corners);
+    chosen.sort_by(|a, b| a.0.total_cmp(&b.0));
+    chosen.truncate(n);
+    chosen.into_iter().map(|(_, p)| p).collect()
+}
+
+/// The point `distance` metres along polyline `way`.
+fn point_at(way: &[DVec3], distance: f64) -> DVec3 {
+    let mut left = distance;
+    for w in way.windows(2) {
+        let l = w[0].distance(w[1]);
+        if left <= l && l > 0.0 {
+            return w[0].lerp(w[1], left / l);
+        }
+        left -= l;
+    }
+    way[way.len() - 1]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::band_route::tests::{steps, terrain, world};
+    use crate::encoding::{EncodingKind, InitKind};
+    use crate::planning::PlanningProblem;
+    use crate::problem::Problem;
+    use crate::rng::rng_from_seed;
+
+    #[test]
+    fn seeded_plans_fly_the_way_in_height_within_the_band_and_the_climb_limit() {
+        // Two steps down (1700 m, 1000 m, then the plain) with ten free waypoints: the way
+        // has long straights high over the lower steps, where a waypoint halfway would have
+        // to be pulled down into the band and dive steeper than 45 deg.
+        let w = world(10, terrain(steps));
+        let seeds = band_seeds(&w);
+        assert_eq!(seeds.waypoints[0].len(), 10, "{seeds:?}");
+        let p = PlanningProblem::new(&w, EncodingKind::Spherical, InitKind::Band);
+        let mut rng = rng_from_seed(7);
+        let mut x = vec![0.0; p.dimension()];
+        // The way keeps 45 deg; the sideways bow shortens some straights a little (a way at
+        // the limit then exceeds it by a fraction of a degree, for the search to settle),
+        // where a waypoint pulled into the band would dive at 60 deg and more.
+        let tan = (w.spec().uavs[0].max_climb_deg + 1.0).to_radians().tan();
+        for _ in 0..20 {
+            p.sample_initial(&mut rng, &mut x);
+            let plan = p.decode(&x);
+            let points: Vec<DVec3> = plan.uavs[0]
+                .waypoints
+                .iter()
+                .map(|&q| w.absolute(q))
+                .collect();
+            for q in &plan.uavs[0].waypoints[1..11] {
+                assert!((100.0..=200.0).contains(&q.z), "{q:?}");
+            }
+            for s in points.windows(2) {
+                let h = s[0].truncate().distance(s[1].truncate());
+                assert!((s[1].z - s[0].z).abs() <= tan * h + 1e-6, "{points:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn extra_waypoints_sit_where_the_way_is_in_the_band() {
+        // A straight from 1800 m down to 150 m over 1600 m of plain: in the band only
+        // near its end (above ground 0 it is in [100, 200] m for its last 3 %).
+        let way = [DVec3::new(0.0, 0.0, 1800.0), DVec3::new(1600.0, 0.0, 150.0)];
+        let ground = |q: DVec2| if q.x < 10.0 { 1700.0 } else { 0.0 };
+        let points = on_the_way(&way, 4, [100.0, 200.0], &ground);
+        assert_eq!(points.len(), 4);
+        for p in &points {
+            let agl = p.z - ground(p.truncate());
+            assert!((100.0..=200.0).contains(&agl), "{points:?}");
+        }
+        assert!(points.windows(2).all(|w| w[0].x < w[1].x), "{points:?}");
+    }
+}
