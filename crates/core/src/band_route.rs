@@ -323,32 +323,13 @@ impl Graph {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use crate::world::spec::{GoalSpec, ScenarioSpec, UavSpec};
     use crate::world::terrain::{Sampling, Terrain};
+    use crate::world::test_spec::one_uav_spec;
 
     /// One UAV from (100, 500) to (900, 500) over a 1000 m map without threats, with
     /// `waypoints` free waypoints, over `terrain`.
     pub(crate) fn world(waypoints: usize, terrain: Terrain) -> World {
-        let mut spec = ScenarioSpec {
-            name: "band".into(),
-            description: String::new(),
-            terrain: Default::default(),
-            geo: None,
-            map: Default::default(),
-            threats: Vec::new(),
-            goal: GoalSpec {
-                position: [900.0, 500.0, 150.0],
-                antenna: 2.0,
-            },
-            uavs: vec![UavSpec::default()],
-            communication: Default::default(),
-            energy: Default::default(),
-            objective: Default::default(),
-            timing: Default::default(),
-            planning: Default::default(),
-        };
-        spec.map.x = [0.0, 1000.0];
-        spec.map.y = [0.0, 1000.0];
+        let mut spec = one_uav_spec("band", Vec::new(), [900.0, 500.0, 150.0]);
         spec.uavs[0].start = [100.0, 500.0, 150.0];
         spec.planning.waypoints = waypoints;
         World::new(spec, terrain).unwrap()

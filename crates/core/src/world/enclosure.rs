@@ -181,31 +181,11 @@ impl Grid {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::world::spec::{GoalSpec, UavSpec};
+    use crate::world::spec::UavSpec;
     use crate::world::threat::Threat;
 
     fn spec(threats: Vec<Threat>) -> ScenarioSpec {
-        let mut s = ScenarioSpec {
-            name: "walls".into(),
-            description: String::new(),
-            terrain: Default::default(),
-            geo: None,
-            map: Default::default(),
-            threats,
-            goal: GoalSpec {
-                position: [900.0, 900.0, 150.0],
-                antenna: 2.0,
-            },
-            uavs: vec![UavSpec::default()],
-            communication: Default::default(),
-            energy: Default::default(),
-            objective: Default::default(),
-            timing: Default::default(),
-            planning: Default::default(),
-        };
-        s.map.x = [0.0, 1000.0];
-        s.map.y = [0.0, 1000.0];
-        s
+        crate::world::test_spec::one_uav_spec("walls", threats, [900.0, 900.0, 150.0])
     }
 
     fn threat(x: f64, y: f64, r: f64) -> Threat {

@@ -13,6 +13,8 @@ pub mod procedural;
 pub mod slots;
 pub mod spec;
 pub mod terrain;
+#[cfg(test)]
+pub(crate) mod test_spec;
 pub mod threat;
 pub mod unreachable;
 pub mod validate;
