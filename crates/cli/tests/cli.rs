@@ -340,10 +340,31 @@ fn an_infeasible_plan_says_so_last_and_require_feasible_exits_3() {
         outcome.contains("widest way between the threats keeps"),
         "{outcome}"
     );
+    assert!(outcome.contains("; in height ("), "{outcome}");
     // Outputs were written before the exit.
     assert!(dir.path().join("plan.json").exists());
     let stderr = String::from_utf8_lossy(&out.get_output().stderr).to_string();
     assert!(stderr.contains("--require-feasible"), "{stderr}");
+}
+
+#[test]
+fn under_a_time_limit_the_outcome_leaves_the_search_in_height_out_and_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = swarmplan()
+        .args(["plan", "--scenario", "tiny", "--iterations", "2"])
+        .args(["--population", "6", "--time-limit", "60", "--seed", "1"])
+        .args(["--no-figures", "--out"])
+        .arg(dir.path())
+        .assert()
+        .success();
+    let stdout = String::from_utf8_lossy(&out.get_output().stdout).to_string();
+    let outcome = stdout.lines().last().unwrap();
+    assert!(outcome.starts_with("none found: "), "{stdout}");
+    assert!(!outcome.contains("; in height ("), "{outcome}");
+    assert!(
+        outcome.contains("the route layer in height was left out under the time limit"),
+        "{outcome}"
+    );
 }
 
 #[test]

@@ -22,6 +22,17 @@ const WIDEST_CAP_M: f64 = 100.0;
 /// feasible plan.
 #[must_use]
 pub fn infeasible_outcome(world: &World, assessment: &Assessment) -> Option<String> {
+    infeasible_outcome_searched(world, assessment, true)
+}
+
+/// [`infeasible_outcome`], searching in height ([`crate::band_route`], a second or so per
+/// start) only when `in_height` (a caller under a time limit leaves it out and says so).
+#[must_use]
+pub fn infeasible_outcome_searched(
+    world: &World,
+    assessment: &Assessment,
+    in_height: bool,
+) -> Option<String> {
     if assessment.feasible() {
         return None;
     }
@@ -34,10 +45,18 @@ pub fn infeasible_outcome(world: &World, assessment: &Assessment) -> Option<Stri
         };
         return Some(format!("no plan exists: {first}{more}"));
     }
-    let mut ways: Vec<String> = ways_in_world(world)
-        .into_iter()
-        .map(|w| w.sentence())
-        .collect();
+    let found = if in_height {
+        ways_in_world(world)
+    } else {
+        ways(spec)
+    };
+    let mut ways: Vec<String> = found.into_iter().map(|w| w.sentence()).collect();
+    if !in_height && !ways.is_empty() {
+        ways.push(
+            "the route layer in height was left out under the time limit (`scenario check` runs it)"
+                .to_string(),
+        );
+    }
     match unsearched_starts(spec) {
         0 => {}
         n => ways.push(format!("{n} further starts not searched")),

@@ -264,7 +264,10 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         print_summary(args, &world, &attempts, &written);
     }
     let line = a.verdict();
-    let outcome = swarmplan_core::outcome::infeasible_outcome(&world, a);
+    // Under --time-limit the search in height (a second or so per start) is left out, so
+    // that the explanation does not outlast the limit.
+    let outcome =
+        swarmplan_core::outcome::infeasible_outcome_searched(&world, a, args.time_limit.is_none());
     for l in std::iter::once(&line).chain(outcome.as_ref()) {
         if args.json {
             eprintln!("{l}");
