@@ -73,9 +73,7 @@ impl BandWays {
     pub fn flyable(&self) -> bool {
         self.within.as_ref().is_some_and(|(e, _)| *e <= self.usable)
     }
-}
 
-impl BandWays {
     /// One clause for humans, after "in height": what the grid holds, with its resolution.
     #[must_use]
     pub fn sentence(&self) -> String {
@@ -153,15 +151,32 @@ pub fn band_ways(world: &World, uav: usize, cells: usize, levels: usize) -> Band
     }
 }
 
+/// Only the least-energy way of [`band_ways`] within the scenario's segments (what the
+/// `band` start needs), without the other searches.
+#[must_use]
+pub fn least_energy_way(
+    world: &World,
+    uav: usize,
+    cells: usize,
+    levels: usize,
+) -> Option<(f64, Vec<DVec3>)> {
+    let graph = Graph::build(world, uav, cells, levels.max(2));
+    let allowed = world.spec().planning.waypoints + 1;
+    graph.least_energy_within(0, graph.points.len() - 1, allowed)
+}
+
 /// Places and the segments between them, with their energies.
 struct Graph {
     cell: f64,
     /// Absolute points: the start first, the goal last.
     points: Vec<DVec3>,
-    /// (to, joules) of every segment out of each point, in point order; narrow types
-    /// because the outside instances' grids hold some ten million segments (the energy's
-    /// single precision moves a way's sum by less than a millijoule per kilojoule).
-    out: Vec<Vec<(u32, f32)>>,
+    /// The segments out of point a are `targets[offsets[a]..offsets[a + 1]]`, with their
+    /// joules beside them: compressed rows of narrow types, because the outside instances'
+    /// grids hold some ten million segments (the energy's single precision moves a way's
+    /// sum by less than a millijoule per kilojoule).
+    offsets: Vec<usize>,
+    targets: Vec<u32>,
+    joules: Vec<f32>,
 }
 
 impl Graph {
@@ -226,15 +241,50 @@ impl Graph {
                     .collect()
             })
             .collect();
-        let mut out = vec![Vec::new(); points.len()];
+        // Each point's segments: those to lower points (in the order those rows come),
+        // then its own row.
+        let mut degree = vec![0usize; points.len()];
+        for (a, row) in rows.iter().enumerate() {
+            degree[a] += row.len();
+            for &b in row {
+                degree[b as usize] += 1;
+            }
+        }
+        let mut offsets = Vec::with_capacity(points.len() + 1);
+        offsets.push(0);
+        for d in &degree {
+            offsets.push(offsets[offsets.len() - 1] + d);
+        }
+        let total = offsets[points.len()];
+        let (mut targets, mut joules) = (vec![0u32; total], vec![0f32; total]);
+        let mut next = offsets[..points.len()].to_vec();
         for (a, row) in rows.into_iter().enumerate() {
             for b in row {
                 let bi = b as usize;
-                out[a].push((b, energy(points[a], points[bi]) as f32));
-                out[bi].push((a as u32, energy(points[bi], points[a]) as f32));
+                for (from, to, slot) in [(a, bi, next[a]), (bi, a, next[bi])] {
+                    targets[slot] = to as u32;
+                    joules[slot] = energy(points[from], points[to]) as f32;
+                }
+                next[a] += 1;
+                next[bi] += 1;
             }
         }
-        Self { cell, points, out }
+        Self {
+            cell,
+            points,
+            offsets,
+            targets,
+            joules,
+        }
+    }
+
+    /// The segments out of point `a`: (to, joules).
+    fn out(&self, a: usize) -> impl Iterator<Item = (usize, f64)> + '_ {
+        let range = self.offsets[a]..self.offsets[a + 1];
+        self.targets[range.clone()]
+            .iter()
+            .zip(&self.joules[range])
+            .map(|(&b, &e)| (b as usize, f64::from(e)))
     }
 
     fn reachable(&self, from: usize) -> Vec<bool> {
@@ -242,8 +292,7 @@ impl Graph {
         seen[from] = true;
         let mut stack = vec![from];
         while let Some(a) = stack.pop() {
-            for &(b, _) in &self.out[a] {
-                let b = b as usize;
+            for (b, _) in self.out(a) {
                 if !seen[b] {
                     seen[b] = true;
                     stack.push(b);
@@ -254,12 +303,8 @@ impl Graph {
     }
 
     fn fewest_segments(&self, from: usize, to: usize) -> Option<usize> {
-        pathfinding::prelude::bfs(
-            &from,
-            |&a| self.out[a].iter().map(|&(b, _)| b as usize),
-            |&a| a == to,
-        )
-        .map(|way| way.len() - 1)
+        pathfinding::prelude::bfs(&from, |&a| self.out(a).map(|(b, _)| b), |&a| a == to)
+            .map(|way| way.len() - 1)
     }
 
     /// Least energy from `from` to `to` in at most `segments` segments, and the way.
@@ -278,8 +323,7 @@ impl Graph {
             let mut next = best.clone();
             let mut before: Vec<usize> = (0..n).collect();
             for a in (0..n).filter(|&a| best[a].is_finite()) {
-                for &(b, e) in &self.out[a] {
-                    let (b, e) = (b as usize, f64::from(e));
+                for (b, e) in self.out(a) {
                     if best[a] + e < next[b] {
                         next[b] = best[a] + e;
                         before[b] = a;
@@ -309,11 +353,7 @@ impl Graph {
         let mj = |e: f64| (e * 1000.0).round() as u64;
         pathfinding::prelude::dijkstra(
             &from,
-            |&a| {
-                self.out[a]
-                    .iter()
-                    .map(move |&(b, e)| (b as usize, mj(f64::from(e))))
-            },
+            |&a| self.out(a).map(move |(b, e)| (b, mj(e))),
             |&a| a == to,
         )
         .map(|(_, c)| c as f64 / 1000.0)

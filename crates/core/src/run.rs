@@ -8,7 +8,7 @@ use std::time::Instant;
 use serde::{Deserialize, Serialize};
 
 use crate::cost::Assessment;
-use crate::encoding::init::{line_corridor_give_up, InitKind};
+use crate::encoding::init::line_corridor_give_up;
 use crate::method::Method;
 use crate::optim::thinned::Thinned;
 use crate::optim::{
@@ -109,14 +109,11 @@ fn staged_search<'w>(
     let outcome = search(&first, req, budget, &mut rng, &mut |r, x| {
         observer(r, x, &first)
     });
-    if outcome.termination != Termination::GaveUp {
-        return (first, outcome);
-    }
-    let second = PlanningProblem::new(
-        world,
-        req.method.encoding,
-        after_line.unwrap_or(InitKind::Corridor),
-    );
+    let next = match (outcome.termination, after_line) {
+        (Termination::GaveUp, Some(next)) => next,
+        _ => return (first, outcome),
+    };
+    let second = PlanningProblem::new(world, req.method.encoding, next);
     let mut rest = req.budget;
     rest.started = started;
     rest.evaluations = req

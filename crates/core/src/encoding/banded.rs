@@ -12,7 +12,7 @@
 use glam::{DVec2, DVec3};
 
 use super::corridor::{corridors, Corridors};
-use crate::band_route::{band_ways, CELLS_ALONG, LEVELS};
+use crate::band_route::{least_energy_way, CELLS_ALONG, LEVELS};
 use crate::route::STARTS_SEARCHED;
 use crate::world::World;
 
@@ -46,8 +46,8 @@ pub fn band_seeds(world: &World) -> BandSeeds {
         done.push((start, u.size, i));
         // Past the route layer's first starts (a second or so each), the corridor.
         let found = (done.len() <= STARTS_SEARCHED)
-            .then(|| band_ways(world, i, CELLS_ALONG, LEVELS))
-            .and_then(|b| b.within);
+            .then(|| least_energy_way(world, i, CELLS_ALONG, LEVELS))
+            .flatten();
         match found {
             Some((_, way)) if way.len() >= 2 && way.len() <= n + 2 => {
                 let height = |q: DVec2| world.terrain().height(q.x, q.y);
