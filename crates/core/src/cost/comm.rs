@@ -32,8 +32,7 @@ pub struct CommScratch {
     /// Interference range factors (1 = no interference) of UAVs and ground nodes.
     db: Vec<f64>,
     ground_db: Vec<f64>,
-    reached: Vec<bool>,
-    queue: Vec<usize>,
+    reach: Reach,
     run: Vec<usize>,
     run_start: Vec<(f64, DVec3)>,
 }
@@ -91,7 +90,6 @@ pub fn communication(
     s.pos.resize(n, DVec3::ZERO);
     s.db.clear();
     s.db.resize(n, 1.0);
-    s.reached.resize(n, false);
     s.run.clear();
     s.run.resize(n, 0);
     s.run_start.resize(n, (0.0, DVec3::ZERO));
@@ -112,17 +110,9 @@ pub fn communication(
                 *d = ch.interference_factor(t, g.position.x, g.position.y);
             }
         }
-        connect(
-            world,
-            k,
-            &s.pos,
-            &s.db,
-            &s.ground_db,
-            &mut s.reached,
-            &mut s.queue,
-        );
+        connect(world, k, &s.pos, &s.db, &s.ground_db, &mut s.reach);
         for u in 0..n {
-            if s.reached[u] {
+            if s.reach.reached[u] {
                 close_run(world, u, dt, max_run, s, sink);
                 continue;
             }
@@ -133,7 +123,7 @@ pub fn communication(
                 gap = gap.min((s.pos[u].distance(g.position) - r).max(0.0));
             }
             for v in 0..n {
-                if s.reached[v] {
+                if s.reach.reached[v] {
                     let r = ch.link_range(k, s.db[u], s.db[v]);
                     gap = gap.min((s.pos[u].distance(s.pos[v]) - r).max(0.0));
                 }
@@ -162,18 +152,31 @@ pub enum Contact {
     Out,
 }
 
-/// Who is in contact at communication step `k` with UAVs at `pos` (absolute altitudes).
-/// `db` and `ground_db` are the interference range factors of each UAV and ground node;
-/// `reached[u]` is set for UAVs in contact; `queue` lists them in the order found, ground
-/// links first. Returns nothing else so that the hot sweep does not allocate.
+/// Who a step's contact search reached, with its buffers (reused so that the hot sweep
+/// does not allocate).
+#[derive(Debug, Clone, Default)]
+pub struct Reach {
+    /// Per UAV: in contact.
+    pub reached: Vec<bool>,
+    /// The UAVs in contact in the order found, ground links first.
+    pub queue: Vec<usize>,
+    /// UAVs not yet reached (scratch of the relay search).
+    pending: Vec<usize>,
+    /// Per ground node and UAV: the node's and the UAV's last positions asked and whether
+    /// the node's horizon showed the UAV.
+    seen: Vec<(DVec3, DVec3, bool)>,
+}
+
+/// Who is in contact at communication step `k` with UAVs at `pos` (absolute altitudes), into
+/// `reach`; returns how many of them link to a ground node directly (the first of its queue).
+/// `db` and `ground_db` are the interference range factors of each UAV and ground node.
 pub fn connect(
     world: &World,
     k: usize,
     pos: &[DVec3],
     db: &[f64],
     ground_db: &[f64],
-    reached: &mut [bool],
-    queue: &mut Vec<usize>,
+    reach: &mut Reach,
 ) -> usize {
     let ch = world.channel();
     #[allow(clippy::cast_precision_loss)]
@@ -182,13 +185,30 @@ pub fn connect(
     let link = |a: DVec3, da: f64, b: DVec3, dbb: f64| {
         a.distance(b) <= ch.link_range(k, da, dbb) && ch.line_of_sight(world.terrain(), a, b)
     };
-    reached.iter_mut().for_each(|r| *r = false);
+    let Reach {
+        reached,
+        queue,
+        pending,
+        seen,
+    } = reach;
+    reached.clear();
+    reached.resize(n, false);
     queue.clear();
-    for (g, gdb) in ground.iter().zip(ground_db) {
+    // A UAV waiting on its launcher or landed stays put for many steps (most of a slotted
+    // hundred-UAV mission): its horizon answer is kept per ground node and asked again only
+    // when it or the node has moved, the same answer as asking each step.
+    seen.resize(ground.len() * n, (DVec3::NAN, DVec3::NAN, false));
+    for (gi, (g, gdb)) in ground.iter().zip(ground_db).enumerate() {
         for u in 0..n {
             let up = !reached[u]
                 && g.position.distance(pos[u]) <= ch.link_range(k, *gdb, db[u])
-                && g.horizon.as_ref().is_none_or(|h| h.visible(pos[u]));
+                && g.horizon.as_ref().is_none_or(|h| {
+                    let memo = &mut seen[gi * n + u];
+                    if memo.0 != g.position || memo.1 != pos[u] {
+                        *memo = (g.position, pos[u], h.visible(pos[u]));
+                    }
+                    memo.2
+                });
             if up {
                 reached[u] = true;
                 queue.push(u);
@@ -198,16 +218,22 @@ pub fn connect(
     let direct = queue.len();
     match world.spec().communication.requirement {
         CommRequirement::Relay => {
+            // Breadth-first over the UAVs still unreached only (in index order, so the
+            // queue's order is the scan of all n in turn).
+            pending.clear();
+            pending.extend((0..n).filter(|&u| !reached[u]));
             let mut head = 0;
-            while head < queue.len() && queue.len() < n {
+            while head < queue.len() && !pending.is_empty() {
                 let a = queue[head];
                 head += 1;
-                for u in 0..n {
-                    if !reached[u] && link(pos[a], db[a], pos[u], db[u]) {
+                pending.retain(|&u| {
+                    let up = link(pos[a], db[a], pos[u], db[u]);
+                    if up {
                         reached[u] = true;
                         queue.push(u);
                     }
-                }
+                    !up
+                });
             }
         }
         CommRequirement::Neighbour => {
@@ -238,11 +264,10 @@ pub fn contact_at(world: &World, t: f64, pos: &[DVec3]) -> Vec<Contact> {
         .iter()
         .map(|g| ch.interference_factor(t, g.position.x, g.position.y))
         .collect();
-    let mut reached = vec![false; pos.len()];
-    let mut queue = Vec::new();
-    let direct = connect(world, k, pos, &db, &gdb, &mut reached, &mut queue);
+    let mut reach = Reach::default();
+    let direct = connect(world, k, pos, &db, &gdb, &mut reach);
     let mut out = vec![Contact::Out; pos.len()];
-    for (i, u) in queue.iter().enumerate() {
+    for (i, u) in reach.queue.iter().enumerate() {
         out[*u] = if i < direct {
             Contact::Direct
         } else {
