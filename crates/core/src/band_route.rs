@@ -21,7 +21,11 @@
 //! - breadth-first search gives the fewest segments from the start to the goal;
 //! - Bellman-Ford limited to `planning.waypoints + 1` segments gives the least energy the
 //!   scenario's waypoints allow, and the way (repeated waypoints fill the rest);
-//! - Dijkstra (Dijkstra 1959, doi:10.1007/BF01386390) gives the least energy at any count.
+//! - Dijkstra (Dijkstra 1959, doi:10.1007/BF01386390) gives the least energy at any count;
+//! - the same Bellman-Ford with each metre out of direct ground contact weighed as
+//!   [`OUT_OF_CONTACT_WEIGHT`] metres of cruise gives the way the `band` start seeds where
+//!   the scenario asks for contact ([`contact_way`]): a lone UAV has no relay, and a fleet
+//!   on a way behind the hills needs one.
 //!
 //! What a way found here does not check: the turn limit at its waypoints, and the arcs the
 //! flown path turns inside its corners (they may cut a ridge the straight segments clear).
@@ -121,7 +125,7 @@ impl BandWays {
 /// box's longer side and `levels` heights (at least 2).
 #[must_use]
 pub fn band_ways(world: &World, uav: usize, cells: usize, levels: usize) -> BandWays {
-    let graph = Graph::build(world, uav, cells, levels.max(2));
+    let graph = Graph::build(world, uav, cells, levels.max(2), 0.0);
     let spec = world.spec();
     let u = &spec.uavs[uav];
     let allowed = spec.planning.waypoints + 1;
@@ -144,7 +148,7 @@ pub fn band_ways(world: &World, uav: usize, cells: usize, levels: usize) -> Band
         fewest_segments: fewest,
         within,
         least_energy,
-        usable: (1.0 - u.reserve) * u.battery_wh * 3600.0,
+        usable: crate::cost::energy::usable_energy(world, uav),
         nearest_to_goal,
         band: spec.map.z_agl,
         max_climb_deg: u.max_climb_deg,
@@ -160,14 +164,58 @@ pub fn least_energy_way(
     cells: usize,
     levels: usize,
 ) -> Option<(f64, Vec<DVec3>)> {
-    let graph = Graph::build(world, uav, cells, levels.max(2));
+    let graph = Graph::build(world, uav, cells, levels.max(2), 0.0);
     let allowed = world.spec().planning.waypoints + 1;
     graph.least_energy_within(0, graph.points.len() - 1, allowed)
 }
 
-/// Places and the segments between them, with their energies.
+/// Longest piece of a segment read as one for [`contact_way`], m (about 3 s of flight at
+/// the outside instances' speeds; `communication.max_outage_s` is 5 s).
+const CONTACT_STEP_M: f64 = 50.0;
+
+/// How much a metre flown out of direct ground contact weighs against a metre of cruise
+/// in [`contact_way`]. Chosen on the development instances (docs/results.md, "Ways that
+/// keep contact").
+pub const OUT_OF_CONTACT_WEIGHT: f64 = 1.5;
+
+/// The way within the scenario's segments that least weighs its energy plus
+/// [`OUT_OF_CONTACT_WEIGHT`] times the cruise energy of each metre flown out of direct
+/// ground contact, with its true energy (J): what the `band` start seeds when the
+/// scenario asks for contact.
+///
+/// Direct contact here is the nominal one: some ground node within the median range R0
+/// (`communication.range`) sees the place over its horizon (docs/model.md,
+/// "Communication"); shadowing, interference and relays through other UAVs are left out,
+/// so the way is a seed, not a verdict. A segment's share out of contact is read at the
+/// middles of equal pieces of at most 50 m.
+#[must_use]
+pub fn contact_way(
+    world: &World,
+    uav: usize,
+    cells: usize,
+    levels: usize,
+) -> Option<(f64, Vec<DVec3>)> {
+    let w: f64 = std::env::var("SWX")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(OUT_OF_CONTACT_WEIGHT);
+    if w == 0.0 {
+        return None;
+    }
+    let graph = Graph::build(world, uav, cells, levels.max(2), w);
+    let allowed = world.spec().planning.waypoints + 1;
+    let (_, way) = graph.least_energy_within(0, graph.points.len() - 1, allowed)?;
+    let energy = way.windows(2).map(|w| graph.energy(w[0], w[1])).sum();
+    Some((energy, way))
+}
+
+/// Places and the segments between them, with their energies (plus, when asked, a weight
+/// on the metres out of direct ground contact).
 struct Graph {
     cell: f64,
+    /// Cruise energy per metre at the most economical speed, J/m, and the UAV's weight, N.
+    per_metre: f64,
+    weight: f64,
     /// Absolute points: the start first, the goal last.
     points: Vec<DVec3>,
     /// The segments out of point a are `targets[offsets[a]..offsets[a + 1]]`, with their
@@ -180,7 +228,9 @@ struct Graph {
 }
 
 impl Graph {
-    fn build(world: &World, uav: usize, cells: usize, levels: usize) -> Self {
+    /// The graph of UAV `uav`; a segment weighs its energy plus `out_of_contact` times the
+    /// cruise energy of its metres out of direct ground contact ([`contact_way`]).
+    fn build(world: &World, uav: usize, cells: usize, levels: usize, out_of_contact: f64) -> Self {
         let spec = world.spec();
         let u = &spec.uavs[uav];
         let map = &spec.map;
@@ -230,14 +280,36 @@ impl Graph {
                 )
         };
         let energy = |a: DVec3, b: DVec3| per_metre * a.distance(b) + weight * (b.z - a.z).max(0.0);
+        let ground = world.ground_nodes_at(crate::world::DEPARTURE);
+        let range = spec.communication.range;
+        let blind = |p: DVec3| {
+            !ground.iter().any(|g| {
+                g.position.distance(p) <= range && g.horizon.as_ref().is_none_or(|h| h.visible(p))
+            })
+        };
+        let weigh_contact = out_of_contact > 0.0;
+        // Metres of segment a-b out of direct contact, read at the middles of equal
+        // pieces of at most CONTACT_STEP_M.
+        let out_metres = |a: usize, b: usize| {
+            if !weigh_contact {
+                return 0.0;
+            }
+            let (pa, pb) = (points[a], points[b]);
+            let length = pa.distance(pb);
+            let pieces = (length / CONTACT_STEP_M).ceil().max(1.0);
+            let blind_pieces = (0..pieces as usize)
+                .filter(|&k| blind(pa.lerp(pb, (k as f64 + 0.5) / pieces)))
+                .count();
+            length * blind_pieces as f64 / pieces
+        };
         // Each pair is tested once, by its lower index; rows are built in parallel and
         // collected in order, so the graph is the same on any number of threads.
-        let rows: Vec<Vec<u32>> = (0..points.len())
+        let rows: Vec<Vec<(u32, f32)>> = (0..points.len())
             .into_par_iter()
             .map(|a| {
                 (a + 1..points.len())
                     .filter(|&b| joined(points[a], points[b]))
-                    .map(|b| b as u32)
+                    .map(|b| (b as u32, out_metres(a, b) as f32))
                     .collect()
             })
             .collect();
@@ -246,7 +318,7 @@ impl Graph {
         let mut degree = vec![0usize; points.len()];
         for (a, row) in rows.iter().enumerate() {
             degree[a] += row.len();
-            for &b in row {
+            for &(b, _) in row {
                 degree[b as usize] += 1;
             }
         }
@@ -259,11 +331,12 @@ impl Graph {
         let (mut targets, mut joules) = (vec![0u32; total], vec![0f32; total]);
         let mut next = offsets[..points.len()].to_vec();
         for (a, row) in rows.into_iter().enumerate() {
-            for b in row {
+            for (b, out) in row {
                 let bi = b as usize;
+                let blind_part = out_of_contact * per_metre * f64::from(out);
                 for (from, to, slot) in [(a, bi, next[a]), (bi, a, next[bi])] {
                     targets[slot] = to as u32;
-                    joules[slot] = energy(points[from], points[to]) as f32;
+                    joules[slot] = (energy(points[from], points[to]) + blind_part) as f32;
                 }
                 next[a] += 1;
                 next[bi] += 1;
@@ -271,11 +344,18 @@ impl Graph {
         }
         Self {
             cell,
+            per_metre,
+            weight,
             points,
             offsets,
             targets,
             joules,
         }
+    }
+
+    /// The energy of flying straight from `a` to `b`, J.
+    fn energy(&self, a: DVec3, b: DVec3) -> f64 {
+        self.per_metre * a.distance(b) + self.weight * (b.z - a.z).max(0.0)
     }
 
     /// The segments out of point `a`: (to, joules).
@@ -438,6 +518,54 @@ pub(crate) mod tests {
         assert_eq!(b.fewest_segments, None, "{b:?}");
         assert!(b.within.is_none() && b.least_energy.is_none());
         assert!(b.nearest_to_goal > 700.0, "{b:?}");
+    }
+
+    /// Metres of `way` out of direct contact by [`contact_way`]'s rule, sampled every 5 m.
+    fn blind_metres(w: &World, way: &[DVec3]) -> f64 {
+        let range = w.spec().communication.range;
+        let blind = |p: DVec3| {
+            !w.ground_nodes_at(0.0).iter().any(|g| {
+                g.position.distance(p) <= range && g.horizon.as_ref().is_none_or(|h| h.visible(p))
+            })
+        };
+        let mut metres = 0.0;
+        for s in way.windows(2) {
+            let steps = (s[0].distance(s[1]) / 5.0).ceil().max(1.0);
+            let step = s[0].distance(s[1]) / steps;
+            for k in 0..steps as usize {
+                if blind(s[0].lerp(s[1], (k as f64 + 0.5) / steps)) {
+                    metres += step;
+                }
+            }
+        }
+        metres
+    }
+
+    #[test]
+    fn the_contact_way_bends_towards_a_ground_node_the_straight_way_misses() {
+        // Range 350 m: the station at the start and UGV0 cover the line's first and last
+        // 317 m (horizontally, from 150 m above ground); its middle 166 m is in range of
+        // nobody, but a node at (500, 850) covers everything north of y = 533 there.
+        let mut spec =
+            crate::world::test_spec::one_uav_spec("contact", Vec::new(), [900.0, 500.0, 150.0]);
+        spec.uavs[0].start = [100.0, 500.0, 150.0];
+        spec.communication.range = 350.0;
+        spec.communication.ground_nodes = vec![crate::world::spec::GroundNodeSpec {
+            name: "north".into(),
+            position: [500.0, 850.0],
+            antenna: 2.0,
+        }];
+        let w = World::new(spec, Terrain::flat(1000.0, 1000.0, 0.0)).unwrap();
+        let (cheapest, straight) = least_energy_way(&w, 0, 20, 3).unwrap();
+        let (energy, bent) = contact_way(&w, 0, 20, 3).unwrap();
+        assert_eq!(straight.len(), 2, "{straight:?}");
+        let (before, after) = (blind_metres(&w, &straight), blind_metres(&w, &bent));
+        assert!(before > 150.0, "{before}");
+        assert!(after < 0.25 * before, "{after} of {before}: {bent:?}");
+        assert!(
+            energy > cheapest && energy < 1.2 * cheapest,
+            "{energy} against {cheapest}"
+        );
     }
 
     #[test]

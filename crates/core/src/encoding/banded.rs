@@ -1,6 +1,9 @@
-//! Seeds of the `band` initialisation (issue 46, items 1 and 5): per start, the route
-//! layer's way in height ([`crate::band_route`]), the least-energy way the scenario's free
-//! waypoints allow, given to the optimizer as free waypoints with their heights.
+//! Seeds of the `band` initialisation (issue 46, items 1, 3 and 5): per start, the route
+//! layer's way in height ([`crate::band_route`]) that the scenario's free waypoints allow,
+//! given to the optimizer as free waypoints with their heights: where the scenario asks
+//! for contact, the way that also weighs the metres flown out of direct ground contact
+//! ([`crate::band_route::contact_way`]) when its energy fits the battery, else the
+//! least-energy way.
 //!
 //! Why: the `corridor` and `route` starts follow a planar way at one random height above
 //! ground, so on rugged terrain the UAV climbs every ridge on it and runs out of battery or
@@ -12,8 +15,9 @@
 use glam::{DVec2, DVec3};
 
 use super::corridor::{corridors, Corridors};
-use crate::band_route::{least_energy_way, CELLS_ALONG, LEVELS};
+use crate::band_route::{contact_way, least_energy_way, CELLS_ALONG, LEVELS};
 use crate::route::STARTS_SEARCHED;
+use crate::world::spec::CommRequirement;
 use crate::world::World;
 
 /// Per UAV, the planar guide (for the heading sectors) and the free waypoints
@@ -46,7 +50,7 @@ pub fn band_seeds(world: &World) -> BandSeeds {
         done.push((start, u.size, i));
         // Past the route layer's first starts (a second or so each), the corridor.
         let found = (done.len() <= STARTS_SEARCHED)
-            .then(|| least_energy_way(world, i, CELLS_ALONG, LEVELS))
+            .then(|| way_for(world, i))
             .flatten();
         match found {
             Some((_, way)) if way.len() >= 2 && way.len() <= n + 2 => {
@@ -68,6 +72,19 @@ pub fn band_seeds(world: &World) -> BandSeeds {
         }
     }
     out
+}
+
+/// UAV `uav`'s way: where the scenario asks for contact, the one that keeps direct ground
+/// contact best within the battery ([`contact_way`]), else the least-energy one.
+fn way_for(world: &World, uav: usize) -> Option<(f64, Vec<DVec3>)> {
+    if world.spec().communication.requirement != CommRequirement::None {
+        if let Some(found) = contact_way(world, uav, CELLS_ALONG, LEVELS) {
+            if found.0 <= crate::cost::energy::usable_energy(world, uav) {
+                return Some(found);
+            }
+        }
+    }
+    least_energy_way(world, uav, CELLS_ALONG, LEVELS)
 }
 
 /// Spacing of the places tried along a segment for the extra waypoints, m.
