@@ -195,14 +195,7 @@ pub fn contact_way(
     cells: usize,
     levels: usize,
 ) -> Option<(f64, Vec<DVec3>)> {
-    let w: f64 = std::env::var("SWX")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(OUT_OF_CONTACT_WEIGHT);
-    if w == 0.0 {
-        return None;
-    }
-    let graph = Graph::build(world, uav, cells, levels.max(2), w);
+    let graph = Graph::build(world, uav, cells, levels.max(2), OUT_OF_CONTACT_WEIGHT);
     let allowed = world.spec().planning.waypoints + 1;
     let (_, way) = graph.least_energy_within(0, graph.points.len() - 1, allowed)?;
     let energy = way.windows(2).map(|w| graph.energy(w[0], w[1])).sum();
