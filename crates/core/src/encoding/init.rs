@@ -75,13 +75,23 @@ pub enum InitKind {
 /// paper-case2 (the line start alone: 20 of 66 and 198).
 pub const LINE_CORRIDOR_GIVE_UP: u32 = 20;
 
+/// The threshold of [`line_corridor_give_up`] for a lone UAV: it has no relay, so a line
+/// run that still misses contact by a second at half the budget (measure 1) seldom finds
+/// it later; the band way that keeps contact is tried instead. 1 and 0 both gave 39 of 66
+/// development runs with one UAV (seeds 1 and 2; 35 at 4) and kept 45 of 66 with
+/// communication off (docs/results.md, "A lone UAV gives up sooner").
+pub const LONE_UAV_GIVE_UP: u32 = 1;
+
 /// The threshold of [`LINE_CORRIDOR_GIVE_UP`] for a fleet of `uavs`: 20 was tuned on fleets
 /// of five, 4 per UAV, and a fleet smaller than five gets 4 per UAV (one UAV rarely gathers
 /// 20 violations, so at 20 it seldom left a line start that had no way through; measured
 /// on the development instances, docs/results.md, "A threshold per UAV"). Fleets of five
-/// and more keep 20, as measured.
+/// and more keep 20, as measured. A lone UAV gets [`LONE_UAV_GIVE_UP`].
 #[must_use]
 pub fn line_corridor_give_up(uavs: usize) -> u32 {
+    if uavs == 1 {
+        return LONE_UAV_GIVE_UP;
+    }
     let per_uav = LINE_CORRIDOR_GIVE_UP / 5;
     u32::try_from(uavs)
         .map_or(LINE_CORRIDOR_GIVE_UP, |n| n.saturating_mul(per_uav))
@@ -332,6 +342,15 @@ fn place_bowed(
 mod tests {
     use super::*;
     use crate::rng::rng_from_seed;
+
+    #[test]
+    fn a_lone_uav_gives_its_line_up_sooner_and_fleets_of_five_and_more_keep_twenty() {
+        assert_eq!(line_corridor_give_up(1), LONE_UAV_GIVE_UP);
+        assert_eq!(line_corridor_give_up(2), 8);
+        assert_eq!(line_corridor_give_up(4), 16);
+        assert_eq!(line_corridor_give_up(5), LINE_CORRIDOR_GIVE_UP);
+        assert_eq!(line_corridor_give_up(100), LINE_CORRIDOR_GIVE_UP);
+    }
 
     fn frame() -> PathFrame {
         PathFrame {
