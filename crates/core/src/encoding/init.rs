@@ -77,9 +77,10 @@ pub const LINE_CORRIDOR_GIVE_UP: u32 = 20;
 
 /// The threshold of [`line_corridor_give_up`] for a lone UAV: it has no relay, so a line
 /// run that still misses contact by a second at half the budget (measure 1) seldom finds
-/// it later; the band way that keeps contact is tried instead. 1 and 0 both gave 39 of 66
-/// development runs with one UAV (seeds 1 and 2; 35 at 4) and kept 45 of 66 with
-/// communication off (docs/results.md, "A lone UAV gives up sooner").
+/// it later; the band way that keeps contact is tried instead. 1 gave 39 of 66
+/// development runs with one UAV on each of seeds 1 and 2 (4 gave 35 on each; 0 gave 39 on
+/// seed 1) and kept 45 of 66 with communication off (docs/results.md, "A lone UAV gives up
+/// sooner").
 pub const LONE_UAV_GIVE_UP: u32 = 1;
 
 /// The threshold of [`LINE_CORRIDOR_GIVE_UP`] for a fleet of `uavs`: 20 was tuned on fleets
