@@ -35,6 +35,7 @@
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
+use crate::cost::coverage::direct_ground_link;
 use crate::route::RouteMap;
 use crate::world::energy::G;
 use crate::world::World;
@@ -173,6 +174,10 @@ pub fn least_energy_way(
 /// the outside instances' speeds; `communication.max_outage_s` is 5 s).
 const CONTACT_STEP_M: f64 = 50.0;
 
+/// At most this many pieces per segment (50 m pieces up to 3.2 km segments, longer pieces
+/// beyond), so that a map tens of kilometres wide does not multiply the graph's build time.
+const MAX_CONTACT_PIECES: f64 = 64.0;
+
 /// How much a metre flown out of direct ground contact weighs against a metre of cruise
 /// in [`contact_way`]. Chosen on the development instances (docs/results.md, "Ways that
 /// keep contact").
@@ -184,10 +189,10 @@ pub const OUT_OF_CONTACT_WEIGHT: f64 = 1.5;
 /// scenario asks for contact.
 ///
 /// Direct contact here is the nominal one: some ground node within the median range R0
-/// (`communication.range`) sees the place over its horizon (docs/model.md,
-/// "Communication"); shadowing, interference and relays through other UAVs are left out,
+/// (`communication.range`) sees the place over its horizon
+/// ([`direct_ground_link`], as the map of places without a ground link); shadowing, interference and relays through other UAVs are left out,
 /// so the way is a seed, not a verdict. A segment's share out of contact is read at the
-/// middles of equal pieces of at most 50 m.
+/// middles of equal pieces of at most 50 m (64 pieces at most).
 #[must_use]
 pub fn contact_way(
     world: &World,
@@ -200,6 +205,12 @@ pub fn contact_way(
     let (_, way) = graph.least_energy_within(0, graph.points.len() - 1, allowed)?;
     let energy = way.windows(2).map(|w| graph.energy(w[0], w[1])).sum();
     Some((energy, way))
+}
+
+/// The energy of flying straight from `a` to `b`, J: `per_metre` J/m of cruise and the
+/// UAV's `weight` (N) times the rise.
+fn straight_energy(per_metre: f64, weight: f64, a: DVec3, b: DVec3) -> f64 {
+    per_metre * a.distance(b) + weight * (b.z - a.z).max(0.0)
 }
 
 /// Places and the segments between them, with their energies (plus, when asked, a weight
@@ -272,24 +283,20 @@ impl Graph {
                     map.clearance,
                 )
         };
-        let energy = |a: DVec3, b: DVec3| per_metre * a.distance(b) + weight * (b.z - a.z).max(0.0);
-        let ground = world.ground_nodes_at(crate::world::DEPARTURE);
-        let range = spec.communication.range;
-        let blind = |p: DVec3| {
-            !ground.iter().any(|g| {
-                g.position.distance(p) <= range && g.horizon.as_ref().is_none_or(|h| h.visible(p))
-            })
-        };
+        let energy = |a: DVec3, b: DVec3| straight_energy(per_metre, weight, a, b);
+        let blind = |p: DVec3| !direct_ground_link(world, p);
         let weigh_contact = out_of_contact > 0.0;
         // Metres of segment a-b out of direct contact, read at the middles of equal
-        // pieces of at most CONTACT_STEP_M.
+        // pieces of at most CONTACT_STEP_M (MAX_CONTACT_PIECES at most).
         let out_metres = |a: usize, b: usize| {
             if !weigh_contact {
                 return 0.0;
             }
             let (pa, pb) = (points[a], points[b]);
             let length = pa.distance(pb);
-            let pieces = (length / CONTACT_STEP_M).ceil().max(1.0);
+            let pieces = (length / CONTACT_STEP_M)
+                .ceil()
+                .clamp(1.0, MAX_CONTACT_PIECES);
             let blind_pieces = (0..pieces as usize)
                 .filter(|&k| blind(pa.lerp(pb, (k as f64 + 0.5) / pieces)))
                 .count();
@@ -348,7 +355,7 @@ impl Graph {
 
     /// The energy of flying straight from `a` to `b`, J.
     fn energy(&self, a: DVec3, b: DVec3) -> f64 {
-        self.per_metre * a.distance(b) + self.weight * (b.z - a.z).max(0.0)
+        straight_energy(self.per_metre, self.weight, a, b)
     }
 
     /// The segments out of point `a`: (to, joules).
@@ -515,12 +522,7 @@ pub(crate) mod tests {
 
     /// Metres of `way` out of direct contact by [`contact_way`]'s rule, sampled every 5 m.
     fn blind_metres(w: &World, way: &[DVec3]) -> f64 {
-        let range = w.spec().communication.range;
-        let blind = |p: DVec3| {
-            !w.ground_nodes_at(0.0).iter().any(|g| {
-                g.position.distance(p) <= range && g.horizon.as_ref().is_none_or(|h| h.visible(p))
-            })
-        };
+        let blind = |p: DVec3| !direct_ground_link(w, p);
         let mut metres = 0.0;
         for s in way.windows(2) {
             let steps = (s[0].distance(s[1]) / 5.0).ceil().max(1.0);

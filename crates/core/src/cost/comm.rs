@@ -163,8 +163,11 @@ pub struct Reach {
     /// UAVs not yet reached (scratch of the relay search).
     pending: Vec<usize>,
     /// Per ground node and UAV: the node's and the UAV's last positions asked and whether
-    /// the node's horizon showed the UAV.
+    /// the node's horizon showed the UAV, in the world [`Self::world`] names (thread-local
+    /// buffers serve every problem evaluated on their thread).
     seen: Vec<(DVec3, DVec3, bool)>,
+    /// [`World::id`] of the world `seen` belongs to.
+    world: Option<u64>,
 }
 
 /// Who is in contact at communication step `k` with UAVs at `pos` (absolute altitudes), into
@@ -190,7 +193,12 @@ pub fn connect(
         queue,
         pending,
         seen,
+        world: seen_in,
     } = reach;
+    if *seen_in != Some(world.id()) {
+        *seen_in = Some(world.id());
+        seen.clear();
+    }
     reached.clear();
     reached.resize(n, false);
     queue.clear();
@@ -303,5 +311,47 @@ fn close_run(
             },
             || format!("out of contact for {secs:.0} s from t = {t0:.0} s; tolerated {tol} s"),
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::band_route::tests::terrain;
+    use crate::world::test_spec::one_uav_spec;
+
+    /// The station at (100, 500) on the ground, a UAV's place 300 m east of it in range
+    /// (350 m, no shadowing), UGV0 out of range; over `ground`.
+    fn world(ground: impl Fn(f64) -> f64) -> World {
+        let mut spec = one_uav_spec("reach", Vec::new(), [900.0, 500.0, 150.0]);
+        spec.uavs[0].start = [100.0, 500.0, 150.0];
+        spec.communication.range = 350.0;
+        spec.communication.shadowing_sigma_db = 0.0;
+        World::new(spec, terrain(ground)).unwrap()
+    }
+
+    #[test]
+    fn buffers_shared_by_two_worlds_keep_each_worlds_line_of_sight() {
+        // The same station and the same place in both worlds; in the second a ridge 600 m
+        // high between them hides the place. Buffers reused from the first world must not
+        // lend it the first world's view.
+        let open = world(|_| 0.0);
+        let ridge = world(|x| {
+            if (240.0..=260.0).contains(&x) {
+                600.0
+            } else {
+                0.0
+            }
+        });
+        let place = [DVec3::new(400.0, 500.0, 150.0)];
+        let mut shared = Reach::default();
+        let mut contact = |w: &World, reach: &mut Reach| {
+            connect(w, 0, &place, &[1.0], &[1.0, 1.0], reach);
+            reach.reached[0]
+        };
+        assert!(contact(&open, &mut shared));
+        assert!(!contact(&ridge, &mut Reach::default()));
+        assert!(!contact(&ridge, &mut shared));
+        assert!(contact(&open, &mut shared));
     }
 }
