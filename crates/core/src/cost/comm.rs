@@ -345,7 +345,7 @@ mod tests {
         });
         let place = [DVec3::new(400.0, 500.0, 150.0)];
         let mut shared = Reach::default();
-        let mut contact = |w: &World, reach: &mut Reach| {
+        let contact = |w: &World, reach: &mut Reach| {
             connect(w, 0, &place, &[1.0], &[1.0, 1.0], reach);
             reach.reached[0]
         };
