@@ -7,6 +7,7 @@ use pyo3::prelude::*;
 use serde_json::json;
 use swarmplan_core::attempts::{run_attempts, MAX_ATTEMPTS};
 use swarmplan_core::run::RunRequest;
+use swarmplan_core::world::flight_margin::{grown_world, judge_as_given};
 use swarmplan_experiment::settings::{Resolved, RunSettings};
 use swarmplan_io::artifact::{ArtifactFiles, RunArtifact};
 use swarmplan_io::convergence::ConvergenceRow;
@@ -19,12 +20,13 @@ use crate::{args, interrupt, scenario};
 /// `plan.json`), `convergence` (its `convergence.csv` rows), `uav_costs` (per row of
 /// `convergence` and UAV), `verdict` (the verdict line `plan` prints), `outcome` (the line
 /// `plan` prints after an infeasible verdict: `no plan exists: ...` or `none found: ...`;
-/// null for a feasible plan) and `notes`.
+/// null for a feasible plan), `notes`, and `margin_verdict` (with `flight_margin` > 0, the
+/// verdict on the scenario tightened by it, which the search ran on; else null).
 #[pyfunction]
 #[pyo3(signature = (
     scenario="paper-case1", method="swarmplan", seed=None, evaluations=None, iterations=None,
     population=None, params=None, terrain=None, profile=None, time_limit=None,
-    until_feasible=false, attempts=1
+    until_feasible=false, attempts=1, flight_margin=0.0
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn plan(
@@ -41,6 +43,7 @@ pub fn plan(
     time_limit: Option<f64>,
     until_feasible: bool,
     attempts: i128,
+    flight_margin: f64,
 ) -> PyResult<String> {
     let attempts: usize = args::positive("attempts", attempts)?;
     if attempts > MAX_ATTEMPTS {
@@ -64,6 +67,9 @@ pub fn plan(
     budget.started = Some(began);
     let loaded = scenario::load(scenario, terrain, profile)?;
     let world = &loaded.world;
+    let grown =
+        grown_world(world, flight_margin).map_err(|e| bad(format!("flight_margin: {e}")))?;
+    let searched_on = grown.as_ref().unwrap_or(world);
     let req = RunRequest {
         method,
         params,
@@ -76,9 +82,13 @@ pub fn plan(
     let made = interrupt::interruptible(py, |cancel| {
         let mut req = req.clone();
         req.budget.cancel = cancel;
-        run_attempts(world, &req, attempts, &mut |_, _| {}, &mut |_| {})
+        run_attempts(searched_on, &req, attempts, &mut |_, _| {}, &mut |_| {})
     })?;
-    let (result, uav_trace) = (made.result, made.uav_trace);
+    let (mut result, uav_trace) = (made.result, made.uav_trace);
+    // With a margin: judged against the scenario as given, the margin's verdict beside it.
+    let margin_verdict = grown
+        .as_ref()
+        .map(|_| judge_as_given(world, &mut result).verdict());
     let mut artifact = RunArtifact::new(
         world,
         &result,
@@ -89,6 +99,7 @@ pub fn plan(
     if attempts > 1 {
         artifact.attempts = made.records;
     }
+    artifact.flight_margin = flight_margin;
     let convergence: Vec<ConvergenceRow> = result
         .outcome
         .trace
@@ -103,6 +114,7 @@ pub fn plan(
         "verdict": result.assessment.verdict(),
         "outcome": swarmplan_core::outcome::infeasible_outcome(world, &result.assessment),
         "notes": loaded.notes,
+        "margin_verdict": margin_verdict,
     });
     serde_json::to_string(&out).map_err(to_py)
 }

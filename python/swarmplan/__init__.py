@@ -318,8 +318,14 @@ def plan(
     time_limit: Optional[float] = None,
     until_feasible: bool = False,
     attempts: int = 1,
+    flight_margin: float = 0.0,
 ) -> Dict[str, Any]:
     """Plans a scenario: the run ``swarmplan plan`` makes with the same arguments.
+
+    ``flight_margin=M`` is ``plan --flight-margin M``: the search runs on the scenario with
+    every hard geometric limit M metres tighter (UAV sizes, separation, terrain clearance,
+    the map box M m inside), and the plan is judged against the scenario as given;
+    ``margin_verdict`` is the verdict with the margin (docs/flight.md, "A flight margin").
 
     ``attempts=K`` is ``plan --attempts K``: up to K runs from derived seeds, stopping at the
     first feasible plan (each spends the whole budget); ``run["attempts"]`` lists them and
@@ -335,8 +341,8 @@ def plan(
         iterations every s-th, each dict naming its iteration), ``uav_costs``
         (per row of ``convergence`` and UAV), ``verdict`` (the verdict line ``plan``
         prints), ``outcome`` (the line ``plan`` prints after an infeasible verdict,
-        ``no plan exists: ...`` or ``none found: ...``; None for a feasible plan) and
-        ``notes``.
+        ``no plan exists: ...`` or ``none found: ...``; None for a feasible plan),
+        ``notes`` and ``margin_verdict`` (None without a flight margin).
     """
     out = json.loads(
         _native.plan(
@@ -352,6 +358,7 @@ def plan(
             time_limit,
             until_feasible,
             _int("attempts", attempts),
+            float(flight_margin),
         )
     )
     _warn(out["notes"])

@@ -68,6 +68,7 @@ def plan(
     time_limit: Optional[float] = ...,
     until_feasible: bool = ...,
     attempts: int = ...,
+    flight_margin: float = ...,
 ) -> str: ...
 def bench(
     out: str,

@@ -86,3 +86,18 @@ def test_plan_attempts_equal_the_cli_attempts(cli, tmp_path):
     assert "attempts" not in swarmplan.plan("tiny", evaluations=300)["run"]
     with pytest.raises(swarmplan.SwarmplanError, match="attempts"):
         swarmplan.plan("tiny", attempts=0)
+
+
+def test_plan_flight_margin_equals_the_cli_flight_margin(cli, tmp_path):
+    out = tmp_path / "margin"
+    run_cli(cli, "plan", "--scenario", "tiny", "--seed", "2", "--flight-margin", "8",
+            "--no-figures", "--out", str(out))
+    want_run = json.loads((out / "run.json").read_text())
+    got = swarmplan.plan("tiny", seed=2, flight_margin=8)
+    assert got["plan"] == json.loads((out / "plan.json").read_text())
+    assert got["run"]["assessment"] == want_run["assessment"]
+    assert got["run"]["flight_margin"] == want_run["flight_margin"] == 8
+    assert got["margin_verdict"].startswith("FEASIBLE"), got["margin_verdict"]
+    assert swarmplan.plan("tiny", evaluations=300)["margin_verdict"] is None
+    with pytest.raises(swarmplan.SwarmplanError, match="flight_margin: flight margin -1"):
+        swarmplan.plan("tiny", flight_margin=-1)

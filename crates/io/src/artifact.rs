@@ -227,6 +227,17 @@ pub struct RunArtifact {
     /// `seed`. Empty (and not written) for a single run.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub attempts: Vec<AttemptRecord>,
+    /// Of `plan --flight-margin M`: the margin in metres the plan was searched with
+    /// ([`swarmplan_core::world::flight_margin`]); `assessment` is against the scenario as
+    /// given. Absent (0) otherwise.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub flight_margin: f64,
+}
+
+/// Whether a margin is 0 (not written).
+#[allow(clippy::trivially_copy_pass_by_ref)]
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 
 impl RunArtifact {
@@ -259,6 +270,7 @@ impl RunArtifact {
             assessment: AssessmentRecord::of(&result.assessment),
             files,
             attempts: Vec::new(),
+            flight_margin: 0.0,
         }
     }
 

@@ -11,7 +11,7 @@ use swarmplan_core::encoding::{EncodingKind, InitKind};
 use swarmplan_core::method::Method;
 use swarmplan_core::optim::{Budget, Termination};
 use swarmplan_core::run::RunRequest;
-use swarmplan_core::world::World;
+use swarmplan_core::world::{flight_margin, World};
 use swarmplan_experiment::workers;
 use swarmplan_io::artifact::{ArtifactFiles, RunArtifact};
 use swarmplan_io::plan_folder::PlanFolder;
@@ -89,6 +89,18 @@ pub struct PlanArgs {
     /// "Parallel evaluation").
     #[arg(long, default_value_t = 0, value_parser = crate::parse_threads, allow_negative_numbers = true)]
     pub threads: usize,
+    /// Search on the scenario with every hard geometric limit M metres tighter (UAV sizes,
+    /// separation, terrain clearance, and the map box M m inside on each side), so that an
+    /// aircraft straying up to M metres from the plan still keeps the scenario's limits
+    /// (docs/flight.md, "A flight margin"). The plan is assessed, written and exported against
+    /// the scenario as given; 0 (the default) searches on it as given.
+    #[arg(
+        long,
+        value_name = "METRES",
+        default_value_t = 0.0,
+        allow_hyphen_values = true
+    )]
+    pub flight_margin: f64,
 }
 
 /// `--attempts`: 1 to [`MAX_ATTEMPTS`].
@@ -241,14 +253,22 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     // --time-limit counts from here: loading, the route layer's checks and the search.
     let began = std::time::Instant::now();
     let world = super::load_world(&args.scenario)?;
-    let prepared = prepare(args, &world, began)?;
+    let grown = flight_margin::grown_world(&world, args.flight_margin)
+        .map_err(|e| anyhow::anyhow!("{e} (--flight-margin)"))?;
+    let searched_on = grown.as_ref().unwrap_or(&world);
+    let prepared = prepare(args, searched_on, began)?;
     if !args.json {
-        eprintln!("{}", announcement(args, &world, &prepared.req));
+        eprintln!("{}", announcement(args, searched_on, &prepared.req));
     }
     if let Some(note) = &prepared.threads_note {
         eprintln!("{note}");
     }
-    let attempts = run_with_progress(args, &world, &prepared);
+    let mut attempts = run_with_progress(args, searched_on, &prepared);
+    // With a margin the search's assessment is on the grown scenario; the plan is judged
+    // against the scenario as given, and the margin's own verdict said beside it.
+    let margin_kept = grown
+        .as_ref()
+        .map(|_| flight_margin::judge_as_given(&world, &mut attempts.result).verdict());
     let result = &attempts.result;
     if result.outcome.termination == Termination::TimeLimit {
         eprintln!(
@@ -262,6 +282,17 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&written.artifact)?);
     } else {
         print_summary(args, &world, &attempts, &written);
+    }
+    if let Some(verdict) = margin_kept {
+        let m = args.flight_margin;
+        let line = format!(
+            "searched with a flight margin of {m} m (sizes, separation and clearance {m} m larger, the map box {m} m inside); with the margin: {verdict}; the scenario as given:"
+        );
+        if args.json {
+            eprintln!("{line}");
+        } else {
+            println!("{line}");
+        }
     }
     let line = a.verdict();
     // Under --time-limit the search in height (a second or so per start) is left out, so
@@ -429,6 +460,7 @@ fn write_outputs(
     }
     let req = &prepared.req;
     let mut artifact = RunArtifact::new(world, result, req.budget, req.params, files);
+    artifact.flight_margin = args.flight_margin;
     if args.attempts > 1 {
         artifact.attempts.clone_from(&attempts.records);
     }

@@ -7,6 +7,7 @@
 pub mod channel;
 pub mod enclosure;
 pub mod energy;
+pub mod flight_margin;
 pub mod horizon;
 pub mod objective;
 pub mod procedural;
