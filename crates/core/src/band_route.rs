@@ -35,9 +35,11 @@
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
-use crate::cost::coverage::direct_ground_link;
+use crate::contact_gap::{contact_gap, ContactGap};
+use crate::cost::coverage::ground_link_within;
 use crate::route::RouteMap;
 use crate::world::energy::G;
+use crate::world::spec::CommRequirement;
 use crate::world::World;
 
 /// Cells along the longer side of the map box (22.5 m on the outside instances' 900 m).
@@ -70,6 +72,10 @@ pub struct BandWays {
     pub band: [f64; 2],
     /// The climb limit kept, deg.
     pub max_climb_deg: f64,
+    /// Where the scenario asks for contact: the way that keeps direct ground contact best
+    /// and its longest stretch without it ([`crate::contact_gap`]); `None` otherwise or
+    /// when the grid holds no way.
+    pub contact: Option<ContactGap>,
 }
 
 impl BandWays {
@@ -118,7 +124,10 @@ impl BandWays {
                 self.nearest_to_goal
             ),
         };
-        format!("in height ({grid}): {what}")
+        match &self.contact {
+            Some(c) => format!("in height ({grid}): {what}; {}", c.sentence()),
+            None => format!("in height ({grid}): {what}"),
+        }
     }
 }
 
@@ -126,7 +135,7 @@ impl BandWays {
 /// box's longer side and `levels` heights (at least 2).
 #[must_use]
 pub fn band_ways(world: &World, uav: usize, cells: usize, levels: usize) -> BandWays {
-    let graph = Graph::build(world, uav, cells, levels.max(2), 0.0);
+    let graph = Graph::build(world, uav, cells, levels.max(2), None);
     let spec = world.spec();
     let u = &spec.uavs[uav];
     let allowed = spec.planning.waypoints + 1;
@@ -153,6 +162,9 @@ pub fn band_ways(world: &World, uav: usize, cells: usize, levels: usize) -> Band
         nearest_to_goal,
         band: spec.map.z_agl,
         max_climb_deg: u.max_climb_deg,
+        contact: (spec.communication.requirement != CommRequirement::None && fewest.is_some())
+            .then(|| contact_gap(world, uav, cells, levels))
+            .flatten(),
     }
 }
 
@@ -165,7 +177,7 @@ pub fn least_energy_way(
     cells: usize,
     levels: usize,
 ) -> Option<(f64, Vec<DVec3>)> {
-    let graph = Graph::build(world, uav, cells, levels.max(2), 0.0);
+    let graph = Graph::build(world, uav, cells, levels.max(2), None);
     let allowed = world.spec().planning.waypoints + 1;
     graph.least_energy_within(0, graph.points.len() - 1, allowed)
 }
@@ -190,7 +202,7 @@ pub const OUT_OF_CONTACT_WEIGHT: f64 = 1.5;
 ///
 /// Direct contact here is the nominal one: some ground node within the median range R0
 /// (`communication.range`) sees the place over its horizon
-/// ([`direct_ground_link`], as the map of places without a ground link); shadowing, interference and relays through other UAVs are left out,
+/// ([`crate::cost::coverage::direct_ground_link`], as the map of places without a ground link); shadowing, interference and relays through other UAVs are left out,
 /// so the way is a seed, not a verdict. A segment's share out of contact is read at the
 /// middles of equal pieces of at most 50 m (64 pieces at most).
 #[must_use]
@@ -200,7 +212,22 @@ pub fn contact_way(
     cells: usize,
     levels: usize,
 ) -> Option<(f64, Vec<DVec3>)> {
-    let graph = Graph::build(world, uav, cells, levels.max(2), OUT_OF_CONTACT_WEIGHT);
+    let nominal = world.channel().nominal_range();
+    contact_way_weighted(world, uav, cells, levels, OUT_OF_CONTACT_WEIGHT, nominal)
+}
+
+/// [`contact_way`] with each metre out of direct ground contact within `range` (infinite:
+/// out of every ground node's sight) weighing `weight` metres of cruise.
+#[must_use]
+pub fn contact_way_weighted(
+    world: &World,
+    uav: usize,
+    cells: usize,
+    levels: usize,
+    weight: f64,
+    range: f64,
+) -> Option<(f64, Vec<DVec3>)> {
+    let graph = Graph::build(world, uav, cells, levels.max(2), Some((weight, range)));
     let allowed = world.spec().planning.waypoints + 1;
     let (_, way) = graph.least_energy_within(0, graph.points.len() - 1, allowed)?;
     let energy = way.windows(2).map(|w| graph.energy(w[0], w[1])).sum();
@@ -232,9 +259,17 @@ struct Graph {
 }
 
 impl Graph {
-    /// The graph of UAV `uav`; a segment weighs its energy plus `out_of_contact` times the
-    /// cruise energy of its metres out of direct ground contact ([`contact_way`]).
-    fn build(world: &World, uav: usize, cells: usize, levels: usize, out_of_contact: f64) -> Self {
+    /// The graph of UAV `uav`; with `contact` = (weight, range), a segment weighs its energy
+    /// plus weight times the cruise energy of its metres out of direct ground contact within
+    /// range ([`contact_way_weighted`]).
+    fn build(
+        world: &World,
+        uav: usize,
+        cells: usize,
+        levels: usize,
+        contact: Option<(f64, f64)>,
+    ) -> Self {
+        let (out_of_contact, range) = contact.unwrap_or((0.0, 0.0));
         let spec = world.spec();
         let u = &spec.uavs[uav];
         let map = &spec.map;
@@ -284,7 +319,7 @@ impl Graph {
                 )
         };
         let energy = |a: DVec3, b: DVec3| straight_energy(per_metre, weight, a, b);
-        let blind = |p: DVec3| !direct_ground_link(world, p);
+        let blind = |p: DVec3| !ground_link_within(world, p, range);
         let weigh_contact = out_of_contact > 0.0;
         // Metres of segment a-b out of direct contact, read at the middles of equal
         // pieces of at most CONTACT_STEP_M (MAX_CONTACT_PIECES at most).
@@ -522,18 +557,9 @@ pub(crate) mod tests {
 
     /// Metres of `way` out of direct contact by [`contact_way`]'s rule, sampled every 5 m.
     fn blind_metres(w: &World, way: &[DVec3]) -> f64 {
-        let blind = |p: DVec3| !direct_ground_link(w, p);
-        let mut metres = 0.0;
-        for s in way.windows(2) {
-            let steps = (s[0].distance(s[1]) / 5.0).ceil().max(1.0);
-            let step = s[0].distance(s[1]) / steps;
-            for k in 0..steps as usize {
-                if blind(s[0].lerp(s[1], (k as f64 + 0.5) / steps)) {
-                    metres += step;
-                }
-            }
-        }
-        metres
+        crate::cost::coverage::blind_stretches(w, way, 5.0, w.channel().nominal_range())
+            .iter()
+            .sum()
     }
 
     #[test]

@@ -14,6 +14,7 @@
 
 pub mod attempts;
 pub mod band_route;
+pub mod contact_gap;
 pub mod cost;
 pub mod encoding;
 pub mod feasibility;

@@ -146,7 +146,13 @@ impl GroundCoverage {
 /// nominal range and the line of sight (no shadowing, no interference).
 #[must_use]
 pub fn direct_ground_link(world: &World, p: DVec3) -> bool {
-    let range = world.channel().nominal_range();
+    ground_link_within(world, p, world.channel().nominal_range())
+}
+
+/// Whether a UAV at `p` (absolute altitude) is within `range` of some ground node that sees
+/// it over the terrain (an infinite range asks for the line of sight alone).
+#[must_use]
+pub fn ground_link_within(world: &World, p: DVec3, range: f64) -> bool {
     world
         .ground_nodes_at(crate::world::DEPARTURE)
         .iter()
@@ -159,4 +165,32 @@ pub fn direct_ground_link(world: &World, p: DVec3) -> bool {
                         .line_of_sight(world.terrain(), g.position, p),
                 }
         })
+}
+
+/// The stretches of `way` (absolute points) out of direct ground contact within `range`
+/// ([`ground_link_within`]), metres each, in flight order: each segment is read at the
+/// middles of equal pieces of at most `step` metres, and a stretch runs on across
+/// waypoints.
+#[must_use]
+pub fn blind_stretches(world: &World, way: &[DVec3], step: f64, range: f64) -> Vec<f64> {
+    let mut stretches = Vec::new();
+    let mut run = 0.0;
+    for s in way.windows(2) {
+        let length = s[0].distance(s[1]);
+        let pieces = (length / step).ceil().max(1.0);
+        for k in 0..pieces as usize {
+            if ground_link_within(world, s[0].lerp(s[1], (k as f64 + 0.5) / pieces), range) {
+                if run > 0.0 {
+                    stretches.push(run);
+                }
+                run = 0.0;
+            } else {
+                run += length / pieces;
+            }
+        }
+    }
+    if run > 0.0 {
+        stretches.push(run);
+    }
+    stretches
 }
