@@ -101,6 +101,9 @@ pub struct StartWays {
     /// What the route layer finds in height ([`crate::band_route`]), for the first UAV of
     /// the start; `None` where the terrain was not at hand ([`ways`]).
     pub band: Option<BandWays>,
+    /// What to change when the way in height is out of every ground node's sight for longer
+    /// than tolerated ([`relay_advice`]).
+    pub advice: Option<String>,
 }
 
 impl StartWays {
@@ -138,9 +141,13 @@ impl StartWays {
                 self.cell
             ),
         };
-        match &self.band {
+        let with_band = match &self.band {
             Some(b) => format!("{planar}; {}", b.sentence()),
             None => planar,
+        };
+        match &self.advice {
+            Some(a) => format!("{with_band}; what to change: {a}"),
+            None => with_band,
         }
     }
 }
@@ -168,6 +175,7 @@ pub fn ways(spec: &ScenarioSpec) -> Vec<StartWays> {
             shortest_at_least: map.length_lower_bound(start, goal),
             widest_margin: map.widest_margin(start, goal, WIDEST_CAP_M),
             band: None,
+            advice: None,
         };
         out.push((start, u.size, found));
     }
@@ -182,15 +190,46 @@ pub fn ways_in_world(world: &World) -> Vec<StartWays> {
     let mut out = ways(world.spec());
     for w in &mut out {
         if w.shortest_at_least.is_some() {
-            w.band = Some(band_ways(
+            let band = band_ways(
                 world,
                 w.uavs[0],
                 crate::band_route::CELLS_ALONG,
                 crate::band_route::LEVELS,
-            ));
+            );
+            w.advice = relay_advice(world.spec(), &band);
+            w.band = Some(band);
         }
     }
     out
+}
+
+/// What an operator can change where even the way that keeps direct ground contact best is
+/// out of every ground node's sight for longer than tolerated ([`crate::contact_gap`]): a
+/// lone UAV needs a relay or a ground node in sight; a fleet that leaves together under
+/// common arrival stays bunched, and launch slots or free departure delays let it string
+/// out along the way and relay across (outside-2 and -9: five UAVs 0 of 3 without, 3 of 3
+/// with slots; docs/results.md). `None` when contact is not the question or the fleet can
+/// already string out.
+#[must_use]
+pub fn relay_advice(spec: &ScenarioSpec, band: &BandWays) -> Option<String> {
+    let gap = band.contact.as_ref()?;
+    if !(gap.range.is_infinite() && gap.needs_relays()) {
+        return None;
+    }
+    let timing = &spec.timing;
+    if spec.uavs.len() == 1 {
+        Some(
+            "one UAV cannot relay for itself: add a UAV to relay, or a ground node (communication.ground_nodes) in sight of that stretch"
+                .to_string(),
+        )
+    } else if timing.launch_interval <= 0.0 && !timing.delay_is_free() {
+        Some(format!(
+            "the {} UAVs leave together, so they cross that stretch together; launch slots (timing.launch_interval) or free departure delays (timing.max_delay) let the fleet string out along the way and relay across it",
+            spec.uavs.len()
+        ))
+    } else {
+        None
+    }
 }
 
 /// How many distinct starts (and UAV sizes) of `spec` the route layer does not search
@@ -205,4 +244,44 @@ pub fn unsearched_starts(spec: &ScenarioSpec) -> usize {
         }
     }
     seen.len().saturating_sub(crate::route::STARTS_SEARCHED)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_stretch_out_of_sight_says_what_to_change_for_one_uav_and_for_a_fleet() {
+        // The plateau of `contact_gap`'s test: its middle 400 m are out of both nodes' sight.
+        let plateau = |x: f64| {
+            if (200.0..=800.0).contains(&x) {
+                200.0
+            } else {
+                0.0
+            }
+        };
+        let terrain = crate::band_route::tests::terrain(plateau);
+        let mut spec = crate::band_route::tests::world(10, terrain.clone())
+            .spec()
+            .clone();
+        // A coarse grid (20 cells, 3 heights) keeps the test quick; `ways_in_world` asks the
+        // same of the full one.
+        let advice = |spec: &ScenarioSpec| {
+            let w = World::new(spec.clone(), terrain.clone()).unwrap();
+            relay_advice(spec, &band_ways(&w, 0, 20, 3))
+        };
+        let alone = advice(&spec).expect("advice for one UAV");
+        assert!(
+            alone.starts_with("one UAV cannot relay for itself"),
+            "{alone}"
+        );
+        spec.uavs.push(spec.uavs[0].clone());
+        let fleet = advice(&spec).expect("advice for two UAVs leaving together");
+        assert!(
+            fleet.contains("launch slots (timing.launch_interval)"),
+            "{fleet}"
+        );
+        spec.timing.launch_interval = 10.0;
+        assert_eq!(advice(&spec), None, "slots already string the fleet out");
+    }
 }
