@@ -275,7 +275,7 @@ mod tests {
             alone.starts_with("one UAV cannot relay for itself"),
             "{alone}"
         );
-        spec.uavs.push(spec.uavs[0].clone());
+        spec.uavs.push(spec.uavs[0]);
         let fleet = advice(&spec).expect("advice for two UAVs leaving together");
         assert!(
             fleet.contains("launch slots (timing.launch_interval)"),
