@@ -71,30 +71,32 @@ def test_bench_writes_a_resumable_folder_and_a_frame(tmp_path):
     assert {"method", "cost_per_uav", "feasible", "seed"} <= set(frame.columns)
 
 
+def planned_by_cli(cli, out, *args):
+    """``swarmplan plan ARGS --no-figures --out OUT``: its run.json and plan.json."""
+    run_cli(cli, "plan", *args, "--no-figures", "--out", str(out))
+    return json.loads((out / "run.json").read_text()), json.loads((out / "plan.json").read_text())
+
+
 def test_plan_attempts_equal_the_cli_attempts(cli, tmp_path):
-    out = tmp_path / "att"
-    run_cli(cli, "plan", "--scenario", "paper-case2", "--evaluations", "300", "--attempts", "3",
-            "--no-figures", "--out", str(out))
-    want_run = json.loads((out / "run.json").read_text())
+    want_run, want_plan = planned_by_cli(cli, tmp_path / "att", "--scenario", "paper-case2",
+                                         "--evaluations", "300", "--attempts", "3")
     got = swarmplan.plan("paper-case2", evaluations=300, attempts=3)
     def strip(records):  # wall times differ between two runs
         return [{k: v for k, v in r.items() if k != "seconds"} for r in records]
 
     assert strip(got["run"]["attempts"]) == strip(want_run["attempts"])
     assert got["run"]["seed"] == want_run["seed"]
-    assert got["plan"] == json.loads((out / "plan.json").read_text())
+    assert got["plan"] == want_plan
     assert "attempts" not in swarmplan.plan("tiny", evaluations=300)["run"]
     with pytest.raises(swarmplan.SwarmplanError, match="attempts"):
         swarmplan.plan("tiny", attempts=0)
 
 
 def test_plan_flight_margin_equals_the_cli_flight_margin(cli, tmp_path):
-    out = tmp_path / "margin"
-    run_cli(cli, "plan", "--scenario", "tiny", "--seed", "2", "--flight-margin", "8",
-            "--no-figures", "--out", str(out))
-    want_run = json.loads((out / "run.json").read_text())
+    want_run, want_plan = planned_by_cli(cli, tmp_path / "margin", "--scenario", "tiny",
+                                         "--seed", "2", "--flight-margin", "8")
     got = swarmplan.plan("tiny", seed=2, flight_margin=8)
-    assert got["plan"] == json.loads((out / "plan.json").read_text())
+    assert got["plan"] == want_plan
     assert got["run"]["assessment"] == want_run["assessment"]
     assert got["run"]["flight_margin"] == want_run["flight_margin"] == 8
     assert got["margin_verdict"].startswith("FEASIBLE"), got["margin_verdict"]

@@ -136,7 +136,7 @@ fn gap_at(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::world::terrain::Terrain;
 
@@ -179,19 +179,21 @@ mod tests {
         );
     }
 
+    /// Ground heights along x: a plain, and a plateau 200 m high for x in [200, 800].
+    pub(crate) fn plateau(x: f64) -> f64 {
+        if (200.0..=800.0).contains(&x) {
+            200.0
+        } else {
+            0.0
+        }
+    }
+
     #[test]
     fn a_plateau_that_hides_its_middle_from_both_nodes_needs_relays_at_any_range() {
         // The station at (100, 500) and UGV0 at (900, 500) stand on a plain, a plateau 200 m
         // high between x = 200 and 800. Each sees over the plateau's edge only about 100 m
         // onto it from 200 m above it, so some 400 m in the middle are out of both sights
         // however long the range: 16 s at 25 m/s against the 5 s tolerated.
-        let plateau = |x: f64| {
-            if (200.0..=800.0).contains(&x) {
-                200.0
-            } else {
-                0.0
-            }
-        };
         let w = crate::band_route::tests::world(10, crate::band_route::tests::terrain(plateau));
         let gap = contact_gap(&w, 0, 20, 3).unwrap();
         assert!(gap.range.is_infinite(), "{gap:?}");

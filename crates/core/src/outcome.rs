@@ -253,14 +253,7 @@ mod tests {
     #[test]
     fn a_stretch_out_of_sight_says_what_to_change_for_one_uav_and_for_a_fleet() {
         // The plateau of `contact_gap`'s test: its middle 400 m are out of both nodes' sight.
-        let plateau = |x: f64| {
-            if (200.0..=800.0).contains(&x) {
-                200.0
-            } else {
-                0.0
-            }
-        };
-        let terrain = crate::band_route::tests::terrain(plateau);
+        let terrain = crate::band_route::tests::terrain(crate::contact_gap::tests::plateau);
         let mut spec = crate::band_route::tests::world(10, terrain.clone())
             .spec()
             .clone();
