@@ -1,6 +1,7 @@
 """Flight replay in JSBSim (`swarmplan.fly`, docs/flight.md): the autopilot holds a hover
-and tracks a line, a planned `tiny` fleet flies within the bounds, and a plan built to lose
-separation loses it as flown when the model says it does.
+and tracks a line, a planned `tiny` fleet flies within the bounds, a plan built to lose
+separation loses it as flown when the model says it does, and a flight margin keeps the
+limits a plain paper-case plan loses as flown.
 
 JSBSim is optional; CI installs it and sets SWARMPLAN_REQUIRE_JSBSIM=1, so these tests
 run there instead of skipping."""
@@ -127,3 +128,19 @@ def test_wind_and_turbulence_move_the_flight_and_a_seed_repeats_it(cli, tmp_path
     assert flights["gusty"] != flights["calm"]
     with pytest.raises(ValueError, match="turbulence: expected one of"):
         fly(out, figure=False, out=tmp_path / "bad", turbulence="stormy")
+
+
+def test_a_flight_margin_keeps_the_limits_the_plain_plan_loses_as_flown(cli, tmp_path):
+    # paper-case1, seed 1: planned as it is, the fleet grazes the hard zones and leaves the
+    # take-off zone 10 m apart, and the flown paths lose a limit; planned with a 2.5 m
+    # margin (the autopilot's worst cross-track error), every limit is kept as flown
+    # (docs/flight.md, "A flight margin").
+    plain, margin = tmp_path / "plain", tmp_path / "margin"
+    run_cli(cli, "plan", "--seed", "1", "--out", str(plain), "--no-figures")
+    run_cli(cli, "plan", "--seed", "1", "--flight-margin", "2.5", "--out", str(margin),
+            "--no-figures")
+    lost = fly(plain, figure=False)
+    assert lost["model_feasible"] and not lost["kept"], lost["losses"]
+    kept = fly(margin, figure=False)
+    assert kept["model_feasible"] and kept["kept"], kept["losses"]
+    assert json.loads((margin / "run.json").read_text())["flight_margin"] == 2.5
