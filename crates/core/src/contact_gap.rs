@@ -81,7 +81,7 @@ impl ContactGap {
             return format!("{basis} holds all along the way that keeps it best");
         }
         let verdict = match (self.needs_relays(), sight_only) {
-            (true, true) => ": alone, a UAV is out of every ground node's sight there for longer than tolerated, so the fleet has to relay across it (on this grid)",
+            (true, true) => ": alone, a UAV is out of every ground node's sight there for longer than tolerated, so only a relay through another UAV bridges it (on this grid)",
             (true, false) => ": at the nominal range a lone UAV is out of contact there for longer than tolerated",
             (false, _) => "",
         };
@@ -201,7 +201,7 @@ pub(crate) mod tests {
         let said = gap.sentence();
         assert!(
             said.starts_with("direct ground contact (line of sight alone, at any range)")
-                && said.ends_with("so the fleet has to relay across it (on this grid)"),
+                && said.ends_with("so only a relay through another UAV bridges it (on this grid)"),
             "{said}"
         );
     }
