@@ -7,7 +7,7 @@ use pyo3::prelude::*;
 use serde_json::json;
 use swarmplan_core::attempts::{run_attempts, MAX_ATTEMPTS};
 use swarmplan_core::run::RunRequest;
-use swarmplan_core::world::flight_margin::{grown_world, judge_as_given};
+use swarmplan_core::world::flight_margin::grown_world;
 use swarmplan_experiment::settings::{Resolved, RunSettings};
 use swarmplan_io::artifact::{ArtifactFiles, RunArtifact};
 use swarmplan_io::convergence::ConvergenceRow;
@@ -86,9 +86,7 @@ pub fn plan(
     })?;
     let (mut result, uav_trace) = (made.result, made.uav_trace);
     // With a margin: judged against the scenario as given, the margin's verdict beside it.
-    let margin_verdict = grown
-        .as_ref()
-        .map(|_| judge_as_given(world, &mut result).verdict());
+    let margin_verdict = grown.as_ref().map(|_| result.judge_on(world).verdict());
     let mut artifact = RunArtifact::new(
         world,
         &result,

@@ -46,10 +46,6 @@ pub struct ContactGap {
     /// The range contact was read at, m: infinite for line of sight alone, else the
     /// nominal range R0 (`communication.range`).
     pub range: f64,
-    /// The way's energy, J.
-    pub energy: f64,
-    /// The UAV's usable battery, J.
-    pub usable: f64,
 }
 
 impl ContactGap {
@@ -102,7 +98,7 @@ impl ContactGap {
 /// heights) says of UAV `uav` keeping direct ground contact (module docs): the way with the
 /// fewest metres out of every ground node's sight when even it is unseen for longer than
 /// tolerated, else the way with the fewest metres out of contact at the nominal range,
-/// whatever their energy (given beside it); `None` when the grid holds no way.
+/// whatever their energy; `None` when the grid holds no way.
 #[must_use]
 pub fn contact_gap(world: &World, uav: usize, cells: usize, levels: usize) -> Option<ContactGap> {
     let sight = gap_at(world, uav, cells, levels, f64::INFINITY)?;
@@ -120,7 +116,7 @@ fn gap_at(
     levels: usize,
     range: f64,
 ) -> Option<ContactGap> {
-    let (energy, way) = contact_way_weighted(world, uav, cells, levels, FEWEST_OUT_WEIGHT, range)?;
+    let (_, way) = contact_way_weighted(world, uav, cells, levels, FEWEST_OUT_WEIGHT, range)?;
     let stretches = blind_stretches(world, &way, SAMPLE_STEP_M, range);
     let spec = world.spec();
     Some(ContactGap {
@@ -130,8 +126,6 @@ fn gap_at(
         top_speed: spec.uavs[uav].speed[1],
         tolerated_s: spec.communication.max_outage_s,
         range,
-        energy,
-        usable: crate::cost::energy::usable_energy(world, uav),
     })
 }
 

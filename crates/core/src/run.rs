@@ -50,6 +50,16 @@ pub struct RunResult {
     pub seconds: f64,
 }
 
+impl RunResult {
+    /// Judges the plan against `world` instead of the world it was searched on (a world
+    /// grown by a flight margin, [`crate::world::flight_margin`]): the assessment becomes
+    /// the one on `world`; returns the one the search made.
+    pub fn judge_on(&mut self, world: &World) -> Assessment {
+        let on_world = crate::cost::assess(world, &self.plan);
+        std::mem::replace(&mut self.assessment, on_world)
+    }
+}
+
 /// Runs `req` on `world`, calling `observer` after initialisation and every iteration.
 #[must_use]
 pub fn run(

@@ -266,9 +266,9 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     let mut attempts = run_with_progress(args, searched_on, &prepared);
     // With a margin the search's assessment is on the grown scenario; the plan is judged
     // against the scenario as given, and the margin's own verdict said beside it.
-    let margin_kept = grown
+    let margin_verdict = grown
         .as_ref()
-        .map(|_| flight_margin::judge_as_given(&world, &mut attempts.result).verdict());
+        .map(|_| attempts.result.judge_on(&world).verdict());
     let result = &attempts.result;
     if result.outcome.termination == Termination::TimeLimit {
         eprintln!(
@@ -283,7 +283,7 @@ pub fn run_command(args: &PlanArgs) -> Result<()> {
     } else {
         print_summary(args, &world, &attempts, &written);
     }
-    if let Some(verdict) = margin_kept {
+    if let Some(verdict) = margin_verdict {
         let m = args.flight_margin;
         let line = format!(
             "searched with a flight margin of {m} m (sizes, separation and clearance {m} m larger, the map box {m} m inside); with the margin: {verdict}; the scenario as given:"

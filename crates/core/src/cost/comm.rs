@@ -14,7 +14,7 @@ use glam::DVec3;
 
 use crate::feasibility::{At, ViolationKind, ViolationSink};
 use crate::timing::TimedPlan;
-use crate::world::channel::{within_range, CHANNEL_HORIZON_S};
+use crate::world::channel::CHANNEL_HORIZON_S;
 use crate::world::spec::CommRequirement;
 use crate::world::World;
 
@@ -120,12 +120,12 @@ pub fn communication(
             let mut gap = f64::INFINITY;
             for (g, gdb) in ground.iter().zip(&s.ground_db) {
                 let r = ch.link_range(k, s.db[u], *gdb);
-                gap = nearer_gap(gap, s.pos[u].distance_squared(g.position), r);
+                gap = gap.min((s.pos[u].distance(g.position) - r).max(0.0));
             }
             for v in 0..n {
                 if s.reach.reached[v] {
                     let r = ch.link_range(k, s.db[u], s.db[v]);
-                    gap = nearer_gap(gap, s.pos[u].distance_squared(s.pos[v]), r);
+                    gap = gap.min((s.pos[u].distance(s.pos[v]) - r).max(0.0));
                 }
             }
             out[u].cost += spec.outage_base_cost + gap;
@@ -139,23 +139,6 @@ pub fn communication(
     for u in 0..n {
         close_run(world, u, dt, max_run, s, sink);
     }
-}
-
-/// `gap.min((distance - range).max(0.0))` for a node `distance_squared.sqrt()` away, bit for
-/// bit, without the square root where the node cannot come nearer than `gap`: the sweep asks
-/// it of every UAV in contact for each one out of contact, and most are far.
-fn nearer_gap(gap: f64, distance_squared: f64, range: f64) -> f64 {
-    if gap <= 0.0 {
-        // Nothing goes below 0 (a NaN difference maxes to 0 too).
-        return gap;
-    }
-    // Beyond (gap + range)^2 by more than the roundings, the root exceeds gap + range and
-    // the rounded difference is at least gap.
-    let reach = gap + range;
-    if range >= 0.0 && reach < f64::INFINITY && distance_squared > reach * reach * (1.0 + 1e-12) {
-        return gap;
-    }
-    gap.min((distance_squared.sqrt() - range).max(0.0))
 }
 
 /// How a UAV stands at one instant.
@@ -182,32 +165,12 @@ pub struct Reach {
     /// Per UAV: the UAV that relayed it when last relayed (`usize::MAX`: none yet), tried
     /// first at the next step (an order only: the set reached is the same).
     relayed_by: Vec<usize>,
-    /// Per ground node and UAV: what was worked out for their last positions, in the world
-    /// [`Self::world`] names (thread-local buffers serve every problem evaluated on their
-    /// thread).
-    seen: Vec<Seen>,
+    /// Per ground node and UAV: the node's and the UAV's last positions asked and whether
+    /// the node's horizon showed the UAV, in the world [`Self::world`] names (thread-local
+    /// buffers serve every problem evaluated on their thread).
+    seen: Vec<(DVec3, DVec3, bool)>,
     /// [`World::id`] of the world `seen` belongs to.
     world: Option<u64>,
-}
-
-/// A ground node's view of one UAV, kept while neither moves.
-#[derive(Debug, Clone, Copy)]
-struct Seen {
-    node: DVec3,
-    uav: DVec3,
-    distance_squared: f64,
-    /// Whether the node's horizon shows the UAV, once asked.
-    visible: Option<bool>,
-}
-
-impl Seen {
-    /// Matches no position (NaN compares unequal), so the first look works everything out.
-    const UNSET: Self = Self {
-        node: DVec3::NAN,
-        uav: DVec3::NAN,
-        distance_squared: f64::NAN,
-        visible: None,
-    };
 }
 
 /// Who is in contact at communication step `k` with UAVs at `pos` (absolute altitudes), into
@@ -226,8 +189,7 @@ pub fn connect(
     let ground = world.ground_nodes_at(k as f64 * ch.step());
     let n = pos.len();
     let link = |a: DVec3, da: f64, b: DVec3, dbb: f64| {
-        within_range(a.distance_squared(b), ch.link_range(k, da, dbb))
-            && ch.line_of_sight(world.terrain(), a, b)
+        a.distance(b) <= ch.link_range(k, da, dbb) && ch.line_of_sight(world.terrain(), a, b)
     };
     let Reach {
         reached,
@@ -245,27 +207,20 @@ pub fn connect(
     reached.resize(n, false);
     queue.clear();
     // A UAV waiting on its launcher or landed stays put for many steps (most of a slotted
-    // hundred-UAV mission): its squared distance and horizon answer are kept per ground node
-    // and worked out again only when it or the node has moved, the same answers as each step.
-    seen.resize(ground.len() * n, Seen::UNSET);
+    // hundred-UAV mission): its horizon answer is kept per ground node and asked again only
+    // when it or the node has moved, the same answer as asking each step.
+    seen.resize(ground.len() * n, (DVec3::NAN, DVec3::NAN, false));
     for (gi, (g, gdb)) in ground.iter().zip(ground_db).enumerate() {
         for u in 0..n {
-            if reached[u] {
-                continue;
-            }
-            let memo = &mut seen[gi * n + u];
-            if memo.node != g.position || memo.uav != pos[u] {
-                *memo = Seen {
-                    node: g.position,
-                    uav: pos[u],
-                    distance_squared: g.position.distance_squared(pos[u]),
-                    visible: None,
-                };
-            }
-            let up = within_range(memo.distance_squared, ch.link_range(k, *gdb, db[u]))
-                && g.horizon
-                    .as_ref()
-                    .is_none_or(|h| *memo.visible.get_or_insert_with(|| h.visible(pos[u])));
+            let up = !reached[u]
+                && g.position.distance(pos[u]) <= ch.link_range(k, *gdb, db[u])
+                && g.horizon.as_ref().is_none_or(|h| {
+                    let memo = &mut seen[gi * n + u];
+                    if memo.0 != g.position || memo.1 != pos[u] {
+                        *memo = (g.position, pos[u], h.visible(pos[u]));
+                    }
+                    memo.2
+                });
             if up {
                 reached[u] = true;
                 queue.push(u);
@@ -393,47 +348,6 @@ mod tests {
         spec.communication.range = 350.0;
         spec.communication.shadowing_sigma_db = 0.0;
         World::new(spec, terrain(ground)).unwrap()
-    }
-
-    #[test]
-    fn nearer_gap_is_the_rooted_minimum() {
-        use rand::Rng as _;
-        let mut rng = crate::rng::rng_from_seed(11);
-        let rooted = |gap: f64, d2: f64, r: f64| gap.min((d2.sqrt() - r).max(0.0));
-        let specials = [0.0, 1e-300, 1.0, 1e300, f64::INFINITY, f64::NAN];
-        for &gap in &specials[..5] {
-            for &d2 in &specials {
-                for &r in &specials {
-                    let (a, b) = (nearer_gap(gap, d2, r), rooted(gap, d2, r));
-                    assert!(
-                        a.to_bits() == b.to_bits(),
-                        "gap {gap}, d2 {d2}, r {r}: {a} vs {b}"
-                    );
-                }
-            }
-        }
-        for _ in 0..200_000 {
-            let r = 1000.0 * rng.random::<f64>();
-            let gap = if rng.random::<bool>() {
-                f64::INFINITY
-            } else {
-                500.0 * rng.random::<f64>()
-            };
-            // Distances about gap + r, down to the last bits.
-            let edge = if gap.is_finite() {
-                gap + r
-            } else {
-                1500.0 * rng.random::<f64>()
-            };
-            let root = f64::from_bits(edge.to_bits() + rng.random_range(0..9u64) - 4);
-            for d2 in [root * root, 4.0e6 * rng.random::<f64>()] {
-                let (a, b) = (nearer_gap(gap, d2, r), rooted(gap, d2, r));
-                assert!(
-                    a.to_bits() == b.to_bits(),
-                    "gap {gap}, d2 {d2}, r {r}: {a} vs {b}"
-                );
-            }
-        }
     }
 
     #[test]

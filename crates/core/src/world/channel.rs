@@ -150,30 +150,6 @@ impl Channel {
     }
 }
 
-/// Whether two points `distance_squared` apart (the squared Euclidean distance) lie within
-/// `range`: the same answer as `distance_squared.sqrt() <= range` for every input, NaN and
-/// infinities included, with the square root taken only within 1e-12 relative of the range.
-///
-/// Why: the contact sweep asks this for every UAV and ground node at every step (a hundred
-/// UAVs over a 550 s slotted mission), and the root was a quarter of its time. The square
-/// root is correctly rounded and monotone, so a squared distance more than 1e-12 below
-/// `range`^2 has its root at most `range` and one more than 1e-12 above has its root above
-/// it; the margins dwarf the squaring's rounding (2^-53 relative).
-#[must_use]
-pub fn within_range(distance_squared: f64, range: f64) -> bool {
-    const MARGIN: f64 = 1e-12;
-    if range >= 0.0 && distance_squared >= 0.0 {
-        let r2 = range * range;
-        if distance_squared < r2 * (1.0 - MARGIN) {
-            return true;
-        }
-        if distance_squared > r2 * (1.0 + MARGIN) {
-            return false;
-        }
-    }
-    distance_squared.sqrt() <= range
-}
-
 /// Range factor of a loss of `db` decibels.
 #[must_use]
 pub fn loss_factor(db: f64) -> f64 {
@@ -183,47 +159,6 @@ pub fn loss_factor(db: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn within_range_answers_as_the_square_root_does() {
-        use rand::Rng as _;
-        let mut rng = rng_from_seed(7);
-        let specials = [
-            0.0,
-            -0.0,
-            -1.0,
-            f64::MIN_POSITIVE,
-            1e-300,
-            1e300,
-            f64::MAX,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::NAN,
-        ];
-        let mut pairs: Vec<(f64, f64)> = Vec::new();
-        for &a in &specials {
-            for &b in &specials {
-                pairs.push((a, b));
-            }
-        }
-        for _ in 0..200_000 {
-            let r: f64 = 1.0 + 999.0 * rng.random::<f64>();
-            // Around the boundary, down to the last bits of the root.
-            let root = f64::from_bits(r.to_bits() + rng.random_range(0..9u64) - 4);
-            let d2 = root * root;
-            pairs.push((d2, r));
-            pairs.push((f64::from_bits(d2.to_bits() + 1), r));
-            pairs.push((f64::from_bits(d2.to_bits().saturating_sub(1)), r));
-            pairs.push((r * r * (1.0 + 2e-12 * (rng.random::<f64>() - 0.5)), r));
-        }
-        for (d2, r) in pairs {
-            assert_eq!(
-                within_range(d2, r),
-                d2.sqrt() <= r,
-                "d2 {d2:e}, range {r:e}"
-            );
-        }
-    }
 
     fn spec() -> CommSpec {
         CommSpec {

@@ -20,8 +20,6 @@ use thiserror::Error;
 
 use super::spec::ScenarioSpec;
 use super::{World, WorldError};
-use crate::cost::Assessment;
-use crate::run::RunResult;
 
 /// Why a flight margin cannot be applied.
 #[derive(Debug, Error)]
@@ -66,14 +64,6 @@ pub fn grown_world(world: &World, margin: f64) -> Result<Option<World>, FlightMa
     World::new(spec, world.terrain().clone())
         .map(Some)
         .map_err(|source| FlightMarginError::Invalid { margin, source })
-}
-
-/// Judges a run searched on a grown world against `world`, the scenario as given: its
-/// assessment becomes the one on `world`; returns the one the search made, on the grown
-/// world (whether the margin itself is kept).
-pub fn judge_as_given(world: &World, result: &mut RunResult) -> Assessment {
-    let as_given = crate::cost::assess(world, &result.plan);
-    std::mem::replace(&mut result.assessment, as_given)
 }
 
 /// `spec` with every hard geometric limit tightened by `margin` metres (module docs); the
