@@ -236,6 +236,42 @@ pub fn contact_way_weighted(
 
 /// The energy of flying straight from `a` to `b`, J: `per_metre` J/m of cruise and the
 /// UAV's `weight` (N) times the rise.
+/// The test that joins two places of the grid: the straight segment keeps the climb limit,
+/// passes outside every hard zone (exactly) and keeps `map.clearance` above the terrain at
+/// every `map.clearance_step`. Also used off the grid, where a seed cuts a corner
+/// ([`crate::encoding::sharp_corners`]).
+pub(crate) struct StraightTest<'a> {
+    world: &'a World,
+    planar: &'a RouteMap,
+    tan_climb: f64,
+}
+
+impl<'a> StraightTest<'a> {
+    /// The test for UAV `uav`, with `planar` the route map of its size.
+    pub(crate) fn new(world: &'a World, planar: &'a RouteMap, uav: usize) -> Self {
+        let tan_climb = world.spec().uavs[uav].max_climb_deg.to_radians().tan();
+        Self {
+            world,
+            planar,
+            tan_climb,
+        }
+    }
+
+    /// Whether the straight segment a-b (absolute) holds.
+    pub(crate) fn holds(&self, a: DVec3, b: DVec3) -> bool {
+        let map = &self.world.spec().map;
+        let h = a.truncate().distance(b.truncate());
+        (b.z - a.z).abs() <= self.tan_climb * h
+            && self.planar.segment_clear(a.truncate(), b.truncate(), 0.0)
+            && self.world.terrain().samples_clear(
+                a,
+                b,
+                crate::world::terrain::Terrain::samples_on(a, b, map.clearance_step),
+                map.clearance,
+            )
+    }
+}
+
 fn straight_energy(per_metre: f64, weight: f64, a: DVec3, b: DVec3) -> f64 {
     per_metre * a.distance(b) + weight * (b.z - a.z).max(0.0)
 }
@@ -299,25 +335,14 @@ impl Graph {
             }
         }
         points.push(goal);
-        let tan_climb = u.max_climb_deg.to_radians().tan();
-        let terrain = world.terrain();
+        let straight = StraightTest::new(world, &planar, uav);
         let model = &spec.energy.model;
         let (_, per_metre) = crate::world::unreachable::most_economical(
             |v| model.power(v, u.payload_kg) / v,
             u.speed,
         );
         let weight = model.mass(u.payload_kg) * G;
-        let joined = |a: DVec3, b: DVec3| {
-            let h = a.truncate().distance(b.truncate());
-            (b.z - a.z).abs() <= tan_climb * h
-                && planar.segment_clear(a.truncate(), b.truncate(), 0.0)
-                && terrain.samples_clear(
-                    a,
-                    b,
-                    crate::world::terrain::Terrain::samples_on(a, b, map.clearance_step),
-                    map.clearance,
-                )
-        };
+        let joined = |a: DVec3, b: DVec3| straight.holds(a, b);
         let energy = |a: DVec3, b: DVec3| straight_energy(per_metre, weight, a, b);
         let blind = |p: DVec3| !ground_link_within(world, p, range);
         let weigh_contact = out_of_contact > 0.0;

@@ -15,8 +15,9 @@
 use glam::{DVec2, DVec3};
 
 use super::corridor::{corridors, Corridors};
-use crate::band_route::{contact_way, least_energy_way, CELLS_ALONG, LEVELS};
-use crate::route::STARTS_SEARCHED;
+use super::sharp_corners::{cut_sharp_corners, CutLimits};
+use crate::band_route::{contact_way, least_energy_way, StraightTest, CELLS_ALONG, LEVELS};
+use crate::route::{RouteMap, STARTS_SEARCHED};
 use crate::world::spec::CommRequirement;
 use crate::world::World;
 
@@ -55,6 +56,7 @@ pub fn band_seeds(world: &World) -> BandSeeds {
         match found {
             Some((_, way)) if way.len() >= 2 && way.len() <= n + 2 => {
                 let height = |q: DVec2| world.terrain().height(q.x, q.y);
+                let way = flyable_corners(world, i, &way);
                 let points = on_the_way(&way, n, [lo, hi], &height);
                 // The guide runs through the seeded waypoints, so that the encoding's
                 // heading sectors and move lengths are centred on them.
@@ -85,6 +87,32 @@ fn way_for(world: &World, uav: usize) -> Option<(f64, Vec<DVec3>)> {
         }
     }
     least_energy_way(world, uav, CELLS_ALONG, LEVELS)
+}
+
+/// `way` with its corners sharper than the turn limit allows cut, with the free waypoints
+/// it leaves spare ([`super::sharp_corners`]).
+fn flyable_corners(world: &World, uav: usize, way: &[DVec3]) -> Vec<DVec3> {
+    let spec = world.spec();
+    let u = &spec.uavs[uav];
+    let spare = (spec.planning.waypoints + 2).saturating_sub(way.len());
+    let planar = RouteMap::with_cells(&spec.map, &spec.threats, u.size, CELLS_ALONG);
+    let straight = StraightTest::new(world, &planar, uav);
+    let [lo, hi] = spec.map.z_agl;
+    let holds = |a: DVec3, b: DVec3| straight.holds(a, b);
+    let into_band = |p: DVec3| {
+        let ground = world.terrain().height(p.x, p.y);
+        DVec3::new(p.x, p.y, p.z.clamp(ground + lo, ground + hi))
+    };
+    cut_sharp_corners(
+        way,
+        spare,
+        &CutLimits {
+            max_turn: u.max_turn_deg.to_radians(),
+            turn_radius: u.turn_radius,
+            holds: &holds,
+            into_band: &into_band,
+        },
+    )
 }
 
 /// Spacing of the places tried along a segment for the extra waypoints, m.
@@ -193,6 +221,50 @@ mod tests {
                 assert!((s[1].z - s[0].z).abs() <= tan * h + 1e-6, "{points:?}");
             }
         }
+    }
+
+    #[test]
+    fn a_fleet_sharing_its_way_flies_it_in_layers() {
+        // Five UAVs from one start over flat ground: the way is the straight line at 150 m,
+        // so the shifts that keep it in the band span 100 m, five strata of 20 m, each
+        // draw in the middle half of its own: every two UAVs at least 10 m apart in height
+        // at every free waypoint, in the same order all along.
+        let mut spec =
+            crate::world::test_spec::one_uav_spec("layers", Vec::new(), [900.0, 500.0, 150.0]);
+        spec.uavs[0].start = [100.0, 500.0, 150.0];
+        spec.planning.waypoints = 6;
+        let lead = spec.uavs[0];
+        spec.uavs.extend(std::iter::repeat_n(lead, 4));
+        let w = World::new(
+            spec,
+            crate::world::terrain::Terrain::flat(1000.0, 1000.0, 0.0),
+        )
+        .unwrap();
+        let seeds = band_seeds(&w);
+        assert!(seeds.waypoints.iter().all(|p| p == &seeds.waypoints[0]));
+        let p = PlanningProblem::new(&w, EncodingKind::Spherical, InitKind::Band);
+        let mut rng = rng_from_seed(11);
+        let mut x = vec![0.0; p.dimension()];
+        let mut orders = std::collections::HashSet::new();
+        for _ in 0..20 {
+            p.sample_initial(&mut rng, &mut x);
+            let plan = p.decode(&x);
+            let mut order: Vec<usize> = (0..5).collect();
+            order.sort_by(|&a, &b| {
+                plan.uavs[a].waypoints[1]
+                    .z
+                    .total_cmp(&plan.uavs[b].waypoints[1].z)
+            });
+            for k in 1..=6 {
+                let z: Vec<f64> = order.iter().map(|&u| plan.uavs[u].waypoints[k].z).collect();
+                assert!(
+                    z.windows(2).all(|h| h[1] - h[0] >= 10.0 - 1e-6),
+                    "{k}: {z:?}"
+                );
+            }
+            orders.insert(order);
+        }
+        assert!(orders.len() > 1, "the layers' order is drawn");
     }
 
     #[test]

@@ -229,6 +229,11 @@ pub fn sample_corridor_plan(
 /// waypoints bowed sideways, held at their altitude over the `ground` below their new
 /// place, and shifted up or down together by as much as keeps them in the band (at most a
 /// level's spacing; clamped into the band where no shift can).
+///
+/// UAVs that share a seeded way (a shared start) are coordinated in height (issue 46, item
+/// 2): in a random order, each takes its own stratum of the shifts that keep the way in the
+/// band (as far as the band allows, uncapped), jittered within the middle half of it, so that
+/// the fleet flies the way in layers; alone, a UAV draws its shift as before, bit for bit.
 pub fn sample_band_plan(
     frame: &PathFrame,
     seeds: &super::banded::BandSeeds,
@@ -238,6 +243,7 @@ pub fn sample_band_plan(
 ) {
     sample_bowed_plan(frame, &seeds.guides, rng, plan);
     let level = (frame.z[1] - frame.z[0]) / (crate::band_route::LEVELS - 1) as f64;
+    let layers = Layers::draw(seeds, frame.n, rng);
     for (i, path) in plan.uavs.iter_mut().enumerate() {
         let Some(points) = seeds.waypoints.get(i).filter(|w| w.len() == frame.n) else {
             continue;
@@ -262,21 +268,63 @@ pub fn sample_band_plan(
             })
             .collect();
         // The shift keeps every waypoint in the band where it can (a waypoint clamped alone
-        // would bend the way up or down steeply), within a level's spacing.
+        // would bend the way up or down steeply), within a level's spacing alone and as far
+        // as the band allows in a layer.
+        let layer = layers.of(i);
+        let cap = if layer.is_some() {
+            f64::INFINITY
+        } else {
+            level
+        };
         let lower = placed
             .iter()
-            .fold(-level, |m, &(_, agl)| m.max(frame.z[0] - agl));
+            .fold(-cap, |m, &(_, agl)| m.max(frame.z[0] - agl));
         let upper = placed
             .iter()
-            .fold(level, |m, &(_, agl)| m.min(frame.z[1] - agl));
+            .fold(cap, |m, &(_, agl)| m.min(frame.z[1] - agl));
+        let share = layer.map_or(u, |(stratum, of)| {
+            (stratum as f64 + 0.25 + 0.5 * u) / of as f64
+        });
         let dz = if lower <= upper {
-            lower + u * (upper - lower)
+            lower + share * (upper - lower)
         } else {
             0.0
         };
         for (k, (q, agl)) in placed.into_iter().enumerate() {
             path.waypoints[k + 1] = DVec3::new(q.x, q.y, (agl + dz).clamp(frame.z[0], frame.z[1]));
         }
+    }
+}
+
+/// The height strata of UAVs sharing a seeded way: per UAV, `(stratum, of)`, or `None`
+/// for a UAV whose way no other shares.
+struct Layers(Vec<Option<(usize, usize)>>);
+
+impl Layers {
+    /// Groups the UAVs by their seeded way and draws each group's order (no draw at all
+    /// when no way is shared).
+    fn draw(seeds: &super::banded::BandSeeds, n: usize, rng: &mut Rng) -> Self {
+        let ways = &seeds.waypoints;
+        let mut out = vec![None; ways.len()];
+        for i in 0..ways.len() {
+            if out[i].is_some() || ways[i].len() != n {
+                continue;
+            }
+            let group: Vec<usize> = (i..ways.len()).filter(|&j| ways[j] == ways[i]).collect();
+            if group.len() < 2 {
+                continue;
+            }
+            let mut order: Vec<usize> = (0..group.len()).collect();
+            rand::seq::SliceRandom::shuffle(order.as_mut_slice(), rng);
+            for (&j, &stratum) in group.iter().zip(&order) {
+                out[j] = Some((stratum, group.len()));
+            }
+        }
+        Self(out)
+    }
+
+    fn of(&self, uav: usize) -> Option<(usize, usize)> {
+        self.0.get(uav).copied().flatten()
     }
 }
 

@@ -14,6 +14,7 @@ pub mod init;
 pub mod paced;
 mod per_block;
 pub mod routed;
+pub mod sharp_corners;
 pub mod spherical;
 
 pub use init::InitKind;
