@@ -27,7 +27,8 @@
 //!   the scenario asks for contact ([`contact_way`]): a lone UAV has no relay, and a fleet
 //!   on a way behind the hills needs one.
 //!
-//! What a way found here does not check: the turn limit at its waypoints, and the arcs the
+//! What a way found here does not check: the turn limit at its waypoints (the `band` start
+//! cuts the corners that break it, [`crate::encoding::sharp_corners`]), and the arcs the
 //! flown path turns inside its corners (they may cut a ridge the straight segments clear).
 //! What "no way" means: none on this grid; a finer grid, other heights or places off the
 //! cell centres may find one. Every answer says its resolution.

@@ -11,6 +11,10 @@
 //! clears the terrain and fits the battery where the grid holds one; the optimizer then
 //! only has to smooth its turns and keep contact and separation. A start whose grid holds
 //! no such way falls back to its threat-free corridor ([`super::corridor`]).
+//!
+//! The grid's way does not check the turn limit, so its corners sharper than the limit
+//! allows are cut with the spare free waypoints first ([`super::sharp_corners`]); UAVs that
+//! share the way fly it in layers of height ([`super::init::sample_band_plan`]).
 
 use glam::{DVec2, DVec3};
 
