@@ -22,9 +22,16 @@ SCRIPT = ROOT / "python" / "examples" / "outside_instances.py"
 
 
 def shared_outside() -> Path:
+    """The instances' folder as swarmplan finds it: `$SWARMPLAN_SHARED/data/outside`, else
+    `shared/data/outside` in the checkout or the nearest of its ancestors holding one."""
     shared = os.environ.get("SWARMPLAN_SHARED")
-    base = Path(shared) if shared else ROOT.parent / "shared"
-    return base / "data" / "outside"
+    if shared:
+        return Path(shared) / "data" / "outside"
+    for folder in [ROOT, *ROOT.parents]:
+        candidate = folder / "shared" / "data" / "outside"
+        if candidate.is_dir():
+            return candidate
+    return ROOT.parent / "shared" / "data" / "outside"
 
 
 def grid(path: Path) -> np.ndarray:
