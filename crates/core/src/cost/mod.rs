@@ -14,6 +14,7 @@ pub mod clearance;
 pub mod comm;
 pub mod coverage;
 pub mod energy;
+mod interval_batch;
 pub mod kinematics;
 mod own_memo;
 pub mod proximity;

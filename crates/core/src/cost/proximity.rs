@@ -11,7 +11,7 @@
 //!
 //! Both UAVs move linearly between the merged times of their waypoints, so on each such
 //! interval the relative position is r0 + w tau: the closest approach is exact, and so is
-//! the integral on every interval (`interval_integral`; until issue 47 intervals beyond
+//! the integral on every interval (`interval_batch.rs`; until issue 47 intervals beyond
 //! 50 m took Simpson's rule, up to 12 % high). A UAV is exempt from
 //! take-off until it first leaves the start zone and from landing once it last enters the
 //! goal zone; a path that comes back into the start zone later is checked there (stricter).
@@ -20,6 +20,7 @@
 
 use glam::DVec3;
 
+use super::interval_batch::IntervalBatch;
 use crate::feasibility::{At, ViolationKind, ViolationSink};
 use crate::plan::Plan;
 use crate::points_key::{same_points, PointsKey};
@@ -47,6 +48,8 @@ pub struct ProximityScratch {
     /// Per UAV: its waypoint-to-threat share and the waypoints, size, epsilon and threats
     /// it was computed from (a pure function of them, so kept while they are the same).
     threat_shares: Vec<ThreatShare>,
+    /// The intervals of the pair being swept.
+    batch: IntervalBatch,
 }
 
 /// One UAV's waypoint-to-threat part of Eq. 8 and what it was computed from.
@@ -174,6 +177,7 @@ impl TimeUnit {
 struct Motion {
     abs: Vec<DVec3>,
     times: Vec<f64>,
+    /// Per segment, then one more for "arrived" (an infinite end and zero velocity).
     ends: Vec<f64>,
     velocities: Vec<DVec3>,
     /// (time it leaves the start zone, time it enters the goal zone).
@@ -217,6 +221,9 @@ impl Motion {
             self.ends.push(end);
             self.velocities.push(v);
         }
+        // Past the last segment: arrived, for good.
+        self.ends.push(f64::INFINITY);
+        self.velocities.push(DVec3::ZERO);
         let start = self.abs[0];
         self.window = (
             self.leave_time(start.x, start.y, zone),
@@ -237,14 +244,6 @@ impl Motion {
     /// Index of the segment flown at time t (segments past the last mean "arrived").
     fn segment_at(&self, t: f64) -> usize {
         self.times[1..].partition_point(|&tk| tk <= t)
-    }
-
-    /// End time and velocity of segment k (infinite end and zero velocity once arrived).
-    fn segment(&self, k: usize) -> (f64, DVec3) {
-        match (self.ends.get(k), self.velocities.get(k)) {
-            (Some(e), Some(v)) => (*e, *v),
-            _ => (f64::INFINITY, DVec3::ZERO),
-        }
     }
 
     /// Position at time t on segment k with velocity v.
@@ -334,7 +333,7 @@ pub fn proximity(
             let pair = &mut s.pairs[index];
             index += 1;
             if s.changed[i] || s.changed[j] {
-                sweep_pair(&s.motion[i], &s.motion[j], eps, sep, pair);
+                sweep_pair(&s.motion[i], &s.motion[j], (eps, sep), &mut s.batch, pair);
                 s.swept += 1;
             }
             for &(d, t, at) in &pair.episodes {
@@ -351,7 +350,19 @@ pub fn proximity(
 
 /// The Eq. 8 integral and the separation episodes of UAVs `a` and `b` over the stretch
 /// where neither is exempt, in the time unit, into `out`.
-fn sweep_pair(a: &Motion, b: &Motion, eps: f64, sep: f64, out: &mut PairResult) {
+///
+/// Three passes over the pair's intervals: the merge of the two motions writes each
+/// interval's relative position and velocity into `batch`; one loop without branches
+/// computes every interval's closest approach and integral (`interval_batch.rs`); a scan
+/// finds the separation episodes among the closest approaches, and the integrals are added
+/// in order.
+fn sweep_pair(
+    a: &Motion,
+    b: &Motion,
+    (eps, sep): (f64, f64),
+    batch: &mut IntervalBatch,
+    out: &mut PairResult,
+) {
     out.integral = 0.0;
     out.episodes.clear();
     let t_from = a.window.0.max(b.window.0);
@@ -359,24 +370,21 @@ fn sweep_pair(a: &Motion, b: &Motion, eps: f64, sep: f64, out: &mut PairResult) 
     if t_to <= t_from {
         return;
     }
+    // Each interval but the last ends a segment of a or b (the last index of each is
+    // "arrived" and never ends), so there are at most as many as both have indices.
+    batch.fill(a.ends.len() + b.ends.len(), |filler| {
+        for_each_interval(a, b, t_from, t_to, |t0, dt, segments, r0, w| {
+            filler.push(t0, dt, segments, r0, w);
+        });
+    });
+    batch.compute(eps);
     let mut episode: Option<(f64, f64, DVec3)> = None;
-    let mut integral = 0.0;
-    let episodes = &mut out.episodes;
-    for_each_interval(a, b, t_from, t_to, |t0, dt, pa, pb, va, vb| {
-        let r0 = pa - pb;
-        let w = va - vb;
-        let qa = w.length_squared();
-        let qb = 2.0 * r0.dot(w);
-        let qc = r0.length_squared();
-        // Closest approach on the interval.
-        let tau = if qa > 0.0 {
-            (-qb / (2.0 * qa)).clamp(0.0, dt)
-        } else {
-            0.0
-        };
-        let dmin2 = (qa * tau + qb) * tau + qc;
-        integral += interval_integral(r0, w, (qa, qb, qc + eps), eps, dt);
+    for i in 0..batch.len() {
+        let (dmin2, tau) = batch.closest(i);
         if dmin2 < sep * sep {
+            let (t0, (ka, kb)) = batch.start(i);
+            let (va, vb) = (a.velocities[ka], b.velocities[kb]);
+            let (pa, pb) = (a.position(ka, va, t0), b.position(kb, vb, t0));
             let d = dmin2.max(0.0).sqrt();
             let at = pa.lerp(pb, 0.5) + (va + vb) * (0.5 * tau);
             let e = episode.get_or_insert((d, t0 + tau, at));
@@ -384,73 +392,45 @@ fn sweep_pair(a: &Motion, b: &Motion, eps: f64, sep: f64, out: &mut PairResult) 
                 *e = (d, t0 + tau, at);
             }
         } else if let Some(e) = episode.take() {
-            episodes.push(e);
+            out.episodes.push(e);
         }
-    });
+    }
     if let Some(e) = episode {
         out.episodes.push(e);
     }
-    out.integral = integral;
+    out.integral = batch.sum();
 }
 
-/// The Eq. 8 integral of one interval, int_0^dt dtau / (|r0 + w tau|^2 + eps), exactly.
-///
-/// With a = |w|^2, b = 2 r0 . w, c = |r0|^2 + eps the antiderivative is
-/// (2 / sqrt D) atan((2 a tau + b) / sqrt D), D = 4 a c - b^2; the difference of its two ends
-/// is one arctangent, (2 / sqrt D) atan(dt sqrt D / (2 c + b dt)), plus pi when the
-/// denominator is negative (the angle lies in (0, pi)); `atan` of the ratio measured 5 %
-/// faster on a whole `plan` than `atan2` (docs/performance.md). D is taken as
-/// 4 (|w x r0|^2 + eps |w|^2), equal to 4ac - b^2 but free of its cancellation. One square
-/// root, one division and one arctangent per interval (issue 47). A pair at rest relative to
-/// each other (a <= 1e-12) gives dt / c. The sweep has a, b and c already (its closest
-/// approach), so they are passed in.
-fn interval_integral(r0: DVec3, w: DVec3, (a, b, c): (f64, f64, f64), eps: f64, dt: f64) -> f64 {
-    if a <= 1e-12 {
-        return dt / c;
-    }
-    let d = (4.0 * (w.cross(r0).length_squared() + eps * a)).max(1e-300);
-    let root = d.sqrt();
-    let denominator = 2.0 * c + b * dt;
-    let angle = (dt * root / denominator).atan();
-    // The angle lies in (0, pi): past pi / 2 (a negative denominator) atan gives it less pi.
-    let angle = if denominator.is_sign_negative() {
-        angle + std::f64::consts::PI
-    } else {
-        angle
-    };
-    2.0 / root * angle
-}
-
-/// Calls `f(t0, dt, pa, pb, va, vb)` for each interval of [from, to] on which both UAVs move
-/// linearly: positions at t0 and velocities (zero once arrived).
+/// Calls `f(t0, dt, (ka, kb), r0, w)` for each interval of [from, to] on which both UAVs
+/// move linearly: its start, length, the two segments flown (the last index of each means
+/// "arrived"), and the relative position at t0 and relative velocity (a's less b's).
 fn for_each_interval(
     ma: &Motion,
     mb: &Motion,
     from: f64,
     to: f64,
-    mut f: impl FnMut(f64, f64, DVec3, DVec3, DVec3, DVec3),
+    mut f: impl FnMut(f64, f64, (usize, usize), DVec3, DVec3),
 ) {
     let (mut ka, mut kb) = (ma.segment_at(from), mb.segment_at(from));
     let mut t = from;
     while t < to {
-        let (ea, va) = ma.segment(ka);
-        let (eb, vb) = mb.segment(kb);
-        let t1 = ea.min(eb).min(to);
-        let pa = ma.position(ka, va, t);
-        let pb = mb.position(kb, vb, t);
+        let (ea, va) = (ma.ends[ka], ma.velocities[ka]);
+        let (eb, vb) = (mb.ends[kb], mb.velocities[kb]);
+        // Comparisons, not `f64::min`: one instruction each instead of a NaN check (times
+        // are never NaN here: a NaN `to` ends the loop before it starts).
+        let t1 = if ea < eb { ea } else { eb };
+        let t1 = if t1 < to { t1 } else { to };
         if t1 > t {
-            f(t, t1 - t, pa, pb, va, vb);
+            let pa = ma.position(ka, va, t);
+            let pb = mb.position(kb, vb, t);
+            f(t, t1 - t, (ka, kb), pa - pb, va - vb);
         }
-        if ea <= t1 {
-            ka += 1;
-        }
-        if eb <= t1 {
-            kb += 1;
-        }
+        ka += usize::from(ea <= t1);
+        kb += usize::from(eb <= t1);
         if t1 <= t && ea > t1 && eb > t1 {
             break;
         }
-        t = t1.max(t);
+        t = if t1 > t { t1 } else { t };
         if t >= to {
             break;
         }
@@ -539,14 +519,21 @@ mod tests {
         )
     }
 
-    /// [`interval_integral`] with its coefficients computed here.
+    /// One interval's integral as the sweep computes it, with its coefficients computed here.
     fn integral(r0: DVec3, w: DVec3, eps: f64, dt: f64) -> f64 {
         let q = (
             w.length_squared(),
             2.0 * r0.dot(w),
             r0.length_squared() + eps,
         );
-        interval_integral(r0, w, q, eps, dt)
+        super::super::interval_batch::interval_integral(
+            q.0,
+            q.1,
+            q.2,
+            w.cross(r0).length_squared(),
+            dt,
+            eps,
+        )
     }
 
     #[test]
