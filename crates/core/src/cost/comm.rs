@@ -189,7 +189,7 @@ pub fn connect(
     let ground = world.ground_nodes_at(k as f64 * ch.step());
     let n = pos.len();
     let link = |a: DVec3, da: f64, b: DVec3, dbb: f64| {
-        a.distance(b) <= ch.link_range(k, da, dbb) && ch.line_of_sight(world.terrain(), a, b)
+        within(a, b, ch.link_range(k, da, dbb)) && ch.line_of_sight(world.terrain(), a, b)
     };
     let Reach {
         reached,
@@ -210,10 +210,11 @@ pub fn connect(
     // hundred-UAV mission): its horizon answer is kept per ground node and asked again only
     // when it or the node has moved, the same answer as asking each step.
     seen.resize(ground.len() * n, (DVec3::NAN, DVec3::NAN, false));
-    for (gi, (g, gdb)) in ground.iter().zip(ground_db).enumerate() {
-        for u in 0..n {
-            let up = !reached[u]
-                && g.position.distance(pos[u]) <= ch.link_range(k, *gdb, db[u])
+    // Per UAV, the ground nodes in turn until one reaches it (the set reached is the same
+    // in any order; this one has no branch on who is already reached).
+    for u in 0..n {
+        for (gi, (g, gdb)) in ground.iter().zip(ground_db).enumerate() {
+            let up = within(g.position, pos[u], ch.link_range(k, *gdb, db[u]))
                 && g.horizon.as_ref().is_none_or(|h| {
                     let memo = &mut seen[gi * n + u];
                     if memo.0 != g.position || memo.1 != pos[u] {
@@ -224,6 +225,7 @@ pub fn connect(
             if up {
                 reached[u] = true;
                 queue.push(u);
+                break;
             }
         }
     }
@@ -275,6 +277,25 @@ pub fn connect(
         CommRequirement::None => {}
     }
     direct
+}
+
+/// Whether `a` and `b` are at most `r` apart: `a.distance(b) <= r` bit for bit, with the
+/// square root taken only where the squared distance lies within a relative 1e-12 of r^2
+/// (issue 47; the bounds' own rounding is four orders of magnitude smaller).
+#[inline]
+fn within(a: DVec3, b: DVec3, r: f64) -> bool {
+    let d2 = a.distance_squared(b);
+    // Below 1e150 the squares cannot overflow.
+    if (0.0..1e150).contains(&r) {
+        let (inner, outer) = (r * (1.0 - 1e-12), r * (1.0 + 1e-12));
+        if d2 <= inner * inner {
+            return true;
+        }
+        if d2 > outer * outer {
+            return false;
+        }
+    }
+    d2.sqrt() <= r
 }
 
 /// Each UAV's contact status at time `t` for UAVs at `pos` (allocating; for reports,
@@ -348,6 +369,37 @@ mod tests {
         spec.communication.range = 350.0;
         spec.communication.shadowing_sigma_db = 0.0;
         World::new(spec, terrain(ground)).unwrap()
+    }
+
+    #[test]
+    fn within_answers_as_the_distance_does() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(47);
+        let mut near = 0;
+        for k in 0..100_000 {
+            let s = [1.0, 700.0, 1e5][k % 3];
+            let v = |rng: &mut rand_chacha::ChaCha8Rng| {
+                DVec3::new(
+                    rng.random_range(-s..s),
+                    rng.random_range(-s..s),
+                    rng.random_range(-s..s),
+                )
+            };
+            let (a, b) = (v(&mut rng), v(&mut rng));
+            let d = a.distance(b);
+            // Ranges at the distance to the last bit, around it, and anywhere.
+            let mut ranges = vec![d, d.next_up(), d.next_down(), d * (1.0 + 1e-13)];
+            ranges.extend([d * (1.0 - 1e-13), rng.random_range(0.0..2.0 * s)]);
+            for r in ranges {
+                near += usize::from((d - r).abs() <= 1e-12 * r);
+                assert_eq!(within(a, b, r), d <= r, "{a} {b} {r}");
+            }
+        }
+        assert!(near > 100_000);
+        for r in [f64::NAN, f64::INFINITY, -1.0, 0.0, 1e200] {
+            let (a, b) = (DVec3::ZERO, DVec3::new(3.0, 4.0, 0.0));
+            assert_eq!(within(a, b, r), a.distance(b) <= r, "{r}");
+        }
     }
 
     #[test]
