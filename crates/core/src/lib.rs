@@ -27,6 +27,7 @@ pub mod plan;
 pub mod planning;
 mod points_key;
 pub mod problem;
+pub mod quadrature;
 pub mod rng;
 pub mod route;
 pub mod run;

@@ -24,54 +24,13 @@ use swarmplan_core::feasibility::{ViolationKind, ViolationSink};
 use swarmplan_core::plan::Plan;
 use swarmplan_core::planning::PlanningProblem;
 use swarmplan_core::problem::{BlockProblem, Problem};
+use swarmplan_core::quadrature::adaptive_simpson;
 use swarmplan_core::rng::rng_from_seed;
 use swarmplan_core::timing::{TimedPath, TimedPlan};
 use swarmplan_core::world::spec::TimingPolicy;
 use swarmplan_core::world::World;
 use swarmplan_io::catalog::load_spec;
 use swarmplan_io::scenario::build_world;
-
-fn simpson(a: f64, b: f64, fa: f64, fm: f64, fb: f64) -> f64 {
-    (b - a) / 6.0 * (fa + 4.0 * fm + fb)
-}
-
-/// Adaptive Simpson quadrature of `f` on [a, b] to a relative tolerance far below 1e-9.
-fn integrate(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> f64 {
-    fn adapt(
-        f: &dyn Fn(f64) -> f64,
-        a: f64,
-        b: f64,
-        (fa, fm, fb): (f64, f64, f64),
-        whole: f64,
-        tol: f64,
-        depth: u32,
-    ) -> f64 {
-        let m = 0.5 * (a + b);
-        let (lm, rm) = (f(0.5 * (a + m)), f(0.5 * (m + b)));
-        let left = simpson(a, m, fa, lm, fm);
-        let right = simpson(m, b, fm, rm, fb);
-        if depth == 0 || (left + right - whole).abs() <= 15.0 * tol {
-            left + right + (left + right - whole) / 15.0
-        } else {
-            adapt(f, a, m, (fa, lm, fm), left, 0.5 * tol, depth - 1)
-                + adapt(f, m, b, (fm, rm, fb), right, 0.5 * tol, depth - 1)
-        }
-    }
-    if b <= a {
-        return 0.0;
-    }
-    let (fa, fm, fb) = (f(a), f(0.5 * (a + b)), f(b));
-    let whole = simpson(a, b, fa, fm, fb);
-    adapt(
-        f,
-        a,
-        b,
-        (fa, fm, fb),
-        whole,
-        1e-12 * whole.abs().max(1e-300),
-        60,
-    )
-}
 
 /// The times at which a path passes its vertices (its motion's kinks), in seconds.
 fn kinks(p: &TimedPath) -> Vec<f64> {
@@ -193,7 +152,7 @@ fn reference(world: &World, timed: &TimedPlan) -> Reference {
             let mut integral = 0.0;
             let mut closest = f64::INFINITY;
             for w in cuts.windows(2) {
-                integral += integrate(&f, w[0], w[1]);
+                integral += adaptive_simpson(&f, (w[0], w[1]), 1e-12, 60);
                 // The distance is convex on a piece where both fly straight.
                 let (mut lo, mut hi) = (w[0], w[1]);
                 for _ in 0..200 {

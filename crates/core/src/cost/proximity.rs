@@ -478,45 +478,8 @@ mod tests {
     /// The slow reference: adaptive Simpson quadrature of 1 / (|r0 + w tau|^2 + eps) on
     /// [0, dt] to a relative tolerance far below the checks'.
     fn reference(r0: DVec3, w: DVec3, eps: f64, dt: f64) -> f64 {
-        fn simpson(a: f64, b: f64, fa: f64, fm: f64, fb: f64) -> f64 {
-            (b - a) / 6.0 * (fa + 4.0 * fm + fb)
-        }
-        #[allow(clippy::too_many_arguments)]
-        fn adapt(
-            f: &dyn Fn(f64) -> f64,
-            a: f64,
-            b: f64,
-            fa: f64,
-            fm: f64,
-            fb: f64,
-            whole: f64,
-            tol: f64,
-            depth: u32,
-        ) -> f64 {
-            let m = 0.5 * (a + b);
-            let (lm, rm) = (f(0.5 * (a + m)), f(0.5 * (m + b)));
-            let (left, right) = (simpson(a, m, fa, lm, fm), simpson(m, b, fm, rm, fb));
-            if depth == 0 || (left + right - whole).abs() <= 15.0 * tol {
-                left + right + (left + right - whole) / 15.0
-            } else {
-                adapt(f, a, m, fa, lm, fm, left, 0.5 * tol, depth - 1)
-                    + adapt(f, m, b, fm, rm, fb, right, 0.5 * tol, depth - 1)
-            }
-        }
         let f = |tau: f64| 1.0 / ((r0 + w * tau).length_squared() + eps);
-        let (fa, fm, fb) = (f(0.0), f(0.5 * dt), f(dt));
-        let whole = simpson(0.0, dt, fa, fm, fb);
-        adapt(
-            &f,
-            0.0,
-            dt,
-            fa,
-            fm,
-            fb,
-            whole,
-            1e-12 * whole.abs().max(1e-300),
-            50,
-        )
+        crate::quadrature::adaptive_simpson(&f, (0.0, dt), 1e-12, 50)
     }
 
     /// One interval's integral as the sweep computes it, with its coefficients computed here.
