@@ -1,5 +1,4 @@
 //! Eq. 8's interval integrals, computed many at a time (issue 47).
-
 //!
 //! The pair sweep of proximity (`proximity.rs`) cuts two UAVs' motions into intervals on
 //! which both fly straight, and each interval's integral int_0^dt dtau / (|r0 + w tau|^2 + eps)
@@ -52,35 +51,14 @@ const Q: [f64; 5] = [
 #[inline(always)]
 pub(super) fn upper_angle(p: f64, q: f64) -> f64 {
     let aq = q.abs();
-    let high = p > TAN_3PI_8 * aq;
-    let middle = p > MIDDLE * aq;
-    let num = if high {
-        -aq
-    } else if middle {
-        p - aq
+    // Cephes' reductions, as selects: above tan(3 pi / 8) atan(x) = pi / 2 + atan(-1 / x),
+    // above 0.66 pi / 4 + atan((x - 1) / (x + 1)), each with its share of pi / 2's tail.
+    let (num, den, base, tail) = if p > TAN_3PI_8 * aq {
+        (-aq, p, std::f64::consts::FRAC_PI_2, PI_2_TAIL)
+    } else if p > MIDDLE * aq {
+        (p - aq, p + aq, std::f64::consts::FRAC_PI_4, 0.5 * PI_2_TAIL)
     } else {
-        p
-    };
-    let den = if high {
-        p
-    } else if middle {
-        p + aq
-    } else {
-        aq
-    };
-    let base = if high {
-        std::f64::consts::FRAC_PI_2
-    } else if middle {
-        std::f64::consts::FRAC_PI_4
-    } else {
-        0.0
-    };
-    let tail = if high {
-        PI_2_TAIL
-    } else if middle {
-        0.5 * PI_2_TAIL
-    } else {
-        0.0
+        (p, aq, 0.0, 0.0)
     };
     let x = num / den;
     let z = x * x;
@@ -300,6 +278,17 @@ impl IntervalBatch {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// A vector with each coordinate uniform in (-s, s).
+    fn random_vector(rng: &mut ChaCha8Rng, s: f64) -> DVec3 {
+        DVec3::new(
+            rng.random_range(-s..s),
+            rng.random_range(-s..s),
+            rng.random_range(-s..s),
+        )
+    }
 
     /// An interval as the merge gives it: t0, dt, segments, r0, w.
     type Interval = (f64, f64, (usize, usize), DVec3, DVec3);
@@ -312,7 +301,6 @@ mod tests {
             }
         });
     }
-    use rand::{Rng, SeedableRng};
 
     /// Units in the last place between two doubles of the same sign.
     fn ulps(a: f64, b: f64) -> u64 {
@@ -321,7 +309,7 @@ mod tests {
 
     #[test]
     fn the_angle_is_within_two_ulps_of_libm_atan2_everywhere() {
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(47);
+        let mut rng = ChaCha8Rng::seed_from_u64(47);
         let mut worst = 0;
         for k in 0..200_000 {
             // Magnitudes across twelve decades, and ratios near every reduction bound.
@@ -356,23 +344,16 @@ mod tests {
 
     #[test]
     fn the_batch_adds_in_order_what_one_interval_at_a_time_gives() {
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
         let mut batch = IntervalBatch::default();
         let mut want = 0.0;
         let mut intervals = Vec::new();
-        let v = |rng: &mut rand_chacha::ChaCha8Rng, s: f64| {
-            DVec3::new(
-                rng.random_range(-s..s),
-                rng.random_range(-s..s),
-                rng.random_range(-s..s),
-            )
-        };
         for k in 0..37 {
-            let r0 = v(&mut rng, 300.0);
+            let r0 = random_vector(&mut rng, 300.0);
             let w = if k % 5 == 0 {
                 DVec3::ZERO
             } else {
-                v(&mut rng, 30.0)
+                random_vector(&mut rng, 30.0)
             };
             let dt = rng.random_range(0.01..20.0);
             intervals.push((0.0, dt, (0, 0), r0, w));
@@ -389,25 +370,18 @@ mod tests {
 
     #[test]
     fn every_dispatch_path_gives_the_same_bits() {
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(12);
+        let mut rng = ChaCha8Rng::seed_from_u64(12);
         let mut detected = IntervalBatch::with_dispatch(Dispatch::Detected);
         let mut baseline = IntervalBatch::with_dispatch(Dispatch::Baseline);
-        let v = |rng: &mut rand_chacha::ChaCha8Rng, s: f64| {
-            DVec3::new(
-                rng.random_range(-s..s),
-                rng.random_range(-s..s),
-                rng.random_range(-s..s),
-            )
-        };
         // Lengths that leave every remainder of a vector's lanes.
         for len in [1, 2, 3, 4, 5, 7, 8, 9, 31, 200] {
             let mut intervals = Vec::new();
             for k in 0..len {
-                let r0 = v(&mut rng, [3.0, 60.0, 900.0][k % 3]);
+                let r0 = random_vector(&mut rng, [3.0, 60.0, 900.0][k % 3]);
                 let w = if k % 7 == 0 {
                     DVec3::ZERO
                 } else {
-                    v(&mut rng, 40.0)
+                    random_vector(&mut rng, 40.0)
                 };
                 let dt = rng.random_range(1e-3..30.0);
                 intervals.push((k as f64, dt, (k, k), r0, w));
