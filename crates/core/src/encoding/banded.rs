@@ -80,6 +80,32 @@ pub fn band_seeds(world: &World) -> BandSeeds {
     out
 }
 
+/// Per UAV, the climb angle of each move to its seeded free waypoints in the encoding's
+/// frame, where heights are above ground (rad; empty where the UAV has no seeds): what the
+/// spherical encoding's climb bounds must hold for the seeds to be expressed
+/// ([`crate::encoding::spherical::Spherical::along_guides`]).
+#[must_use]
+pub fn seeded_climbs(world: &World, seeds: &BandSeeds) -> Vec<Vec<f64>> {
+    let above_ground = |p: DVec3| p.z - world.terrain().height(p.x, p.y);
+    seeds
+        .waypoints
+        .iter()
+        .enumerate()
+        .map(|(i, points)| {
+            let mut from = world.start(i);
+            points
+                .iter()
+                .map(|&p| {
+                    let to = DVec3::new(p.x, p.y, above_ground(p));
+                    let climb = (to.z - from.z).atan2(to.truncate().distance(from.truncate()));
+                    from = to;
+                    climb
+                })
+                .collect()
+        })
+        .collect()
+}
+
 /// UAV `uav`'s way: where the scenario asks for contact, the one that keeps direct ground
 /// contact best within the battery ([`contact_way`]), else the least-energy one.
 fn way_for(world: &World, uav: usize) -> Option<(f64, Vec<DVec3>)> {
@@ -189,6 +215,7 @@ fn point_at(way: &[DVec3], distance: f64) -> DVec3 {
 mod tests {
     use super::*;
     use crate::band_route::tests::{steps, terrain, world};
+    use crate::encoding::init::CORRIDOR_SPREAD;
     use crate::encoding::{EncodingKind, InitKind};
     use crate::planning::PlanningProblem;
     use crate::problem::Problem;
@@ -209,6 +236,7 @@ mod tests {
         // the limit then exceeds it by a fraction of a degree, for the search to settle),
         // where a waypoint pulled into the band would dive at 60 deg and more.
         let tan = (w.spec().uavs[0].max_climb_deg + 1.0).to_radians().tan();
+        let goal = w.goal_at(crate::world::DEPARTURE).truncate();
         for _ in 0..20 {
             p.sample_initial(&mut rng, &mut x);
             let plan = p.decode(&x);
@@ -219,6 +247,17 @@ mod tests {
                 .collect();
             for q in &plan.uavs[0].waypoints[1..11] {
                 assert!((100.0..=200.0).contains(&q.z), "{q:?}");
+            }
+            // Every free waypoint where its seed is, but for the sideways bow (at most 1.5
+            // times the corridor's spread): the encoding's climb bounds hold the seeded
+            // moves that change height above ground faster than 45 deg.
+            let bow = 1.5 * CORRIDOR_SPREAD * w.start(0).truncate().distance(goal) + 1e-6;
+            for (q, seed) in plan.uavs[0].waypoints[1..11]
+                .iter()
+                .zip(&seeds.waypoints[0])
+            {
+                let off = q.truncate().distance(seed.truncate());
+                assert!(off <= bow, "{off} m off, bow {bow} m: {q:?} {seed:?}");
             }
             for s in points.windows(2) {
                 let h = s[0].truncate().distance(s[1].truncate());

@@ -153,16 +153,18 @@ impl PathFrame {
 /// Builds the encoding `kind` for `world`.
 #[must_use]
 pub fn build(kind: EncodingKind, world: &World) -> Box<dyn PathEncoding> {
-    build_along(kind, world, &[])
+    build_along(kind, world, &[], &[])
 }
 
 /// Builds the encoding `kind` for `world`, the spherical one with its heading sectors along
-/// `guides` ([`spherical::Spherical::along_guides`]; the others ignore them).
+/// `guides` and its climb bounds wide enough for `climbs`
+/// ([`spherical::Spherical::along_guides`]; the others ignore both).
 #[must_use]
 pub fn build_along(
     kind: EncodingKind,
     world: &World,
     guides: &[Vec<glam::DVec2>],
+    climbs: &[Vec<f64>],
 ) -> Box<dyn PathEncoding> {
     let frame = PathFrame::of(world);
     match kind {
@@ -174,6 +176,7 @@ pub fn build_along(
                 spherical::AngleConvention::Consistent
             },
             guides,
+            climbs,
         )),
         EncodingKind::Cartesian => Box::new(cartesian::Cartesian::new(frame)),
         EncodingKind::Angle => Box::new(angle::Angle::new(frame, false)),
@@ -331,9 +334,69 @@ mod tests {
             frame1.clone(),
             spherical::AngleConvention::Consistent,
             &guides,
+            &[],
         );
         let plain = spherical::Spherical::new(frame1, spherical::AngleConvention::Consistent);
         assert!(gap(&along) < 1e-6, "{}", gap(&along));
         assert!(gap(&plain) > 50.0, "{}", gap(&plain));
+    }
+
+    #[test]
+    fn a_seeded_move_steeper_above_ground_than_45_deg_round_trips_only_with_its_climb() {
+        use crate::problem::Bound;
+        use glam::DVec3;
+        use std::f64::consts::FRAC_PI_4;
+        // Off a cliff: the way keeps its absolute altitude while the ground under it rises,
+        // so its height above ground falls 80 m over 27 m between two free waypoints.
+        let f = PathFrame {
+            starts: vec![DVec3::new(100.0, 80.0, 150.0)],
+            ..frame_with(3)
+        };
+        let waypoints = [
+            DVec3::new(300.0, 250.0, 180.0),
+            DVec3::new(327.0, 250.0, 100.0),
+            DVec3::new(600.0, 480.0, 140.0),
+        ];
+        let guide: Vec<glam::DVec2> = std::iter::once(f.starts[0])
+            .chain(waypoints)
+            .chain(std::iter::once(f.goal))
+            .map(|p| p.truncate())
+            .collect();
+        let mut from = f.starts[0];
+        let climbs: Vec<f64> = waypoints
+            .iter()
+            .map(|&to| {
+                let climb = (to.z - from.z).atan2(to.truncate().distance(from.truncate()));
+                from = to;
+                climb
+            })
+            .collect();
+        assert!(climbs[1].abs() > 1.2, "{climbs:?}");
+        let mut plan = Plan::default();
+        f.prepare(&mut plan);
+        plan.uavs[0].waypoints[1..4].copy_from_slice(&waypoints);
+        let gap = |enc: &dyn PathEncoding| {
+            let mut x = vec![0.0; enc.bounds().len()];
+            enc.encode_into(&plan, &mut x);
+            let again = enc.decode(&x);
+            plan.uavs[0]
+                .waypoints
+                .iter()
+                .zip(&again.uavs[0].waypoints)
+                .map(|(a, b)| a.distance(*b))
+                .fold(0.0, f64::max)
+        };
+        let convention = spherical::AngleConvention::Consistent;
+        let guides = [guide];
+        let steepest = climbs[1].abs();
+        let steep = spherical::Spherical::along_guides(f.clone(), convention, &guides, &[climbs]);
+        let level = spherical::Spherical::along_guides(f, convention, &guides, &[]);
+        assert!(gap(&steep) < 1e-6, "{}", gap(&steep));
+        assert!(gap(&level) > 20.0, "{}", gap(&level));
+        // Only the steep move's bound widened, to 1.1 times its angle.
+        let psi = &steep.bounds()[3..6];
+        assert_eq!(psi[0], Bound::new(-FRAC_PI_4, FRAC_PI_4));
+        assert_eq!(psi[1], Bound::new(-1.1 * steepest, 1.1 * steepest));
+        assert_eq!(psi[2], Bound::new(-FRAC_PI_4, FRAC_PI_4));
     }
 }

@@ -22,6 +22,14 @@ use crate::problem::Bound;
 /// bound of twice the guide's length over n.
 const LONG_MOVE_ROOM: f64 = 1.5;
 
+/// How much steeper than a seeded move its climb angle may be, where that exceeds SPSO's
+/// 45 deg (the same share of room as [`LONG_MOVE_ROOM`] gives a length, less: an angle near
+/// 90 deg leaves little horizontal move).
+const STEEP_MOVE_ROOM: f64 = 1.1;
+
+/// The steepest climb angle a move's bound may reach, rad (85 deg).
+const STEEPEST_MOVE: f64 = 85.0 * std::f64::consts::PI / 180.0;
+
 /// Which trigonometric convention maps phi to the plane.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum AngleConvention {
@@ -44,7 +52,7 @@ impl Spherical {
     /// Heading sectors centred on each UAV's start-goal bearing, under `convention`.
     #[must_use]
     pub fn new(frame: PathFrame, convention: AngleConvention) -> Self {
-        Self::along_guides(frame, convention, &[])
+        Self::along_guides(frame, convention, &[], &[])
     }
 
     /// As [`Spherical::new`], but UAV i's heading sector at free waypoint k is centred on the
@@ -53,11 +61,20 @@ impl Spherical {
     /// lengths reach twice the guide's length over n; UAVs with an empty guide keep the
     /// start-goal sector. So a corridor that leaves the start-goal bearing by more than
     /// 45 degrees (round a threat) can be expressed and searched around.
+    ///
+    /// `climbs[i][k]`, where given, is the climb angle (rad, either sign) that UAV i's seeded
+    /// move k needs in the encoding's frame, where heights are above ground: on rugged
+    /// terrain a way whose absolute altitude keeps 45 deg may change its height above
+    /// ground faster than that between two waypoints (outside instances: 80 m over 27 m
+    /// of a cliff), and a move clamped to 45 deg then lands tens of metres off in the plane
+    /// and a hundred in altitude. Such a move's bound widens to [`STEEP_MOVE_ROOM`] times
+    /// the angle, at most [`STEEPEST_MOVE`]; the others keep SPSO's 45 deg.
     #[must_use]
     pub fn along_guides(
         frame: PathFrame,
         convention: AngleConvention,
         guides: &[Vec<DVec2>],
+        climbs: &[Vec<f64>],
     ) -> Self {
         let n = frame.n;
         let mut bounds = Vec::with_capacity(frame.dimension());
@@ -89,7 +106,12 @@ impl Spherical {
                 }
             };
             bounds.extend(r_max.iter().map(|&r| Bound::new(0.0, r)));
-            bounds.extend(std::iter::repeat_n(Bound::new(-FRAC_PI_4, FRAC_PI_4), n));
+            let seeded = climbs.get(i).filter(|c| c.len() == n);
+            bounds.extend((0..n).map(|k| {
+                let need = seeded.map_or(0.0, |c| STEEP_MOVE_ROOM * c[k].abs());
+                let psi = need.clamp(FRAC_PI_4, STEEPEST_MOVE.max(FRAC_PI_4));
+                Bound::new(-psi, psi)
+            }));
             bounds.extend(
                 phis.iter()
                     .map(|&phi0| Bound::new(phi0 - FRAC_PI_4, phi0 + FRAC_PI_4)),

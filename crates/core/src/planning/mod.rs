@@ -76,7 +76,8 @@ impl<'w> PlanningProblem<'w> {
     pub fn new(world: &'w World, kind: EncodingKind, init: InitKind) -> Self {
         if init == InitKind::Band {
             let band = encoding::banded::band_seeds(world);
-            let mut problem = Self::with_corridors(world, kind, init, band.guides.clone());
+            let climbs = encoding::banded::seeded_climbs(world, &band);
+            let mut problem = Self::with_guides(world, kind, init, band.guides.clone(), &climbs);
             problem.band = band;
             return problem;
         }
@@ -98,7 +99,19 @@ impl<'w> PlanningProblem<'w> {
         init: InitKind,
         corridors: crate::encoding::corridor::Corridors,
     ) -> Self {
-        let mut path_encoding = encoding::build_along(kind, world, &corridors);
+        Self::with_guides(world, kind, init, corridors, &[])
+    }
+
+    /// [`Self::with_corridors`] with the climb angles of seeded moves that the encoding
+    /// must be able to express ([`encoding::build_along`]).
+    fn with_guides(
+        world: &'w World,
+        kind: EncodingKind,
+        init: InitKind,
+        corridors: crate::encoding::corridor::Corridors,
+        climbs: &[Vec<f64>],
+    ) -> Self {
+        let mut path_encoding = encoding::build_along(kind, world, &corridors, climbs);
         let timing = &world.spec().timing;
         if timing.pace_is_free() {
             path_encoding = Box::new(encoding::paced::Paced::new(
