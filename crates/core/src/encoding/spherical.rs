@@ -1,8 +1,10 @@
 //! Spherical motion encoding (SPSO, Phung & Ha 2021, doi:10.1016/j.asoc.2021.107376;
 //! DLS-SMPSO Eqs. 16-17, doi:10.3390/drones8110654): each free
-//! waypoint is a move (r, psi, phi) from the previous one: r the length, psi the climb angle,
-//! phi the heading. Bounds: r in [0, 2 |start - goal| / n], psi in [-pi/4, pi/4],
-//! phi in [phi0 - pi/4, phi0 + pi/4] around the start-goal bearing phi0 = atan2(dy, dx).
+//! waypoint is a move (r, psi, phi) from the previous one: r the length, psi the climb angle
+//! (heights above ground), phi the heading. Bounds: r in [0, 2 |start - goal| / n], psi in
+//! [-pi/4, pi/4], phi in [phi0 - pi/4, phi0 + pi/4] around the start-goal bearing
+//! phi0 = atan2(dy, dx). Along a seeded way ([`Spherical::along_guides`]) the sectors follow
+//! the way, and r and psi widen where the way's moves need more.
 //! Each coordinate is clamped into the map box and altitude band right after it is computed,
 //! so clamping carries forward (as SPSO does).
 //!
@@ -22,9 +24,10 @@ use crate::problem::Bound;
 /// bound of twice the guide's length over n.
 const LONG_MOVE_ROOM: f64 = 1.5;
 
-/// How much steeper than a seeded move its climb angle may be, where that exceeds SPSO's
-/// 45 deg (the same share of room as [`LONG_MOVE_ROOM`] gives a length, less: an angle near
-/// 90 deg leaves little horizontal move).
+/// How far a seeded move's climb bound reaches beyond the angle the seed needs, where that
+/// angle exceeds SPSO's 45 deg: room for the band start's bow and layers. Less than
+/// [`LONG_MOVE_ROOM`] gives a length, because near 90 deg a small change of angle moves the
+/// waypoint far in the plane. Set before any run, not tuned.
 const STEEP_MOVE_ROOM: f64 = 1.1;
 
 /// The steepest climb angle a move's bound may reach, rad (85 deg).
@@ -67,8 +70,8 @@ impl Spherical {
     /// terrain a way whose absolute altitude keeps 45 deg may change its height above
     /// ground faster than that between two waypoints (outside instances: 80 m over 27 m
     /// of a cliff), and a move clamped to 45 deg then lands tens of metres off in the plane
-    /// and a hundred in altitude. Such a move's bound widens to [`STEEP_MOVE_ROOM`] times
-    /// the angle, at most [`STEEPEST_MOVE`]; the others keep SPSO's 45 deg.
+    /// and a hundred in altitude. Such a move's bound widens to 1.1 times the angle, at
+    /// most 85 deg (`STEEP_MOVE_ROOM`, `STEEPEST_MOVE`); the others keep SPSO's 45 deg.
     #[must_use]
     pub fn along_guides(
         frame: PathFrame,
