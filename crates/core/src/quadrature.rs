@@ -44,7 +44,8 @@ fn refine(
     let (lm, rm) = (f(0.5 * (a + m)), f(0.5 * (m + b)));
     let (left, right) = (simpson(a, m, (fa, lm, fm)), simpson(m, b, (fm, rm, fb)));
     let error = left + right - whole;
-    if depth == 0 || error.abs() <= 15.0 * tolerance {
+    // A NaN estimate stops here rather than halving 2^depth times.
+    if depth == 0 || error.is_nan() || error.abs() <= 15.0 * tolerance {
         left + right + error / 15.0
     } else {
         refine(f, (a, m), (fa, lm, fm), left, 0.5 * tolerance, depth - 1)
@@ -64,5 +65,21 @@ mod tests {
         let exact = 2.0 * 100.0 * (100.0f64).atan();
         assert!((peak - exact).abs() < 1e-9 * exact, "{peak} {exact}");
         assert_eq!(adaptive_simpson(&|_| 1.0, (2.0, 1.0), 1e-12, 10), 0.0);
+        // A NaN integrand ends at once (NaN), where it would have halved 2^50 times.
+        let calls = std::cell::Cell::new(0u32);
+        let nan = adaptive_simpson(
+            &|_| {
+                calls.set(calls.get() + 1);
+                f64::NAN
+            },
+            (0.0, 1.0),
+            1e-12,
+            50,
+        );
+        assert!(
+            nan.is_nan() && calls.get() == 5,
+            "{nan} after {} calls",
+            calls.get()
+        );
     }
 }

@@ -112,7 +112,12 @@ impl Spherical {
             let seeded = climbs.get(i).filter(|c| c.len() == n);
             bounds.extend((0..n).map(|k| {
                 let need = seeded.map_or(0.0, |c| STEEP_MOVE_ROOM * c[k].abs());
-                let psi = need.clamp(FRAC_PI_4, STEEPEST_MOVE.max(FRAC_PI_4));
+                // SPSO's 45 deg unless the seed needs more (a NaN angle asks for nothing).
+                let psi = if need > FRAC_PI_4 {
+                    need.min(STEEPEST_MOVE)
+                } else {
+                    FRAC_PI_4
+                };
                 Bound::new(-psi, psi)
             }));
             bounds.extend(
